@@ -1,0 +1,8 @@
+//! Geometry: rays, boxes, shapes and their intersections, and the BVH that finds them.
+
+pub mod aabb;
+pub mod ray;
+pub mod triangle;
+
+pub use aabb::Aabb;
+pub use ray::{Ray, offset_origin};

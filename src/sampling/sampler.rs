@@ -1,0 +1,294 @@
+//! Per-sample uniform number sources: `independent` (PCG32), `stratified` (jittered,
+//! dimensions decorrelated by permutation) and `sobol` (Owen-scrambled Sobol, Burley 2020).
+//!
+//! Every stream is derived from (seed, pixel, sample index) alone, so an image is the
+//! same whatever the thread count or the split into passes.
+
+use std::fmt;
+use std::str::FromStr;
+
+use glam::Vec2;
+
+use super::rng::{Rng32, hash_words, mix64};
+
+/// A source of uniform numbers in [0, 1). Rejection samplers draw from one of these.
+pub trait Uniform {
+    /// One uniform number.
+    fn next_1d(&mut self) -> f32;
+    /// Two uniform numbers meant to be used together (stratified jointly where the
+    /// sampler can).
+    fn next_2d(&mut self) -> Vec2;
+}
+
+impl Uniform for Rng32 {
+    #[inline]
+    fn next_1d(&mut self) -> f32 {
+        self.next_f32()
+    }
+    #[inline]
+    fn next_2d(&mut self) -> Vec2 {
+        Vec2::new(self.next_f32(), self.next_f32())
+    }
+}
+
+/// Which sampler a render uses; parsed from and shown as its CLI name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SamplerKind {
+    /// Independent uniform numbers from PCG32.
+    Independent,
+    /// Jittered strata in every dimension, decorrelated across dimensions by permutation.
+    Stratified,
+    /// Owen-scrambled Sobol points (Burley 2020, "Practical Hash-based Owen Scrambling").
+    Sobol,
+}
+
+impl SamplerKind {
+    /// Every sampler, in the order the CLI lists them.
+    pub const ALL: [SamplerKind; 3] =
+        [SamplerKind::Independent, SamplerKind::Stratified, SamplerKind::Sobol];
+
+    /// The CLI name.
+    pub fn name(self) -> &'static str {
+        match self {
+            SamplerKind::Independent => "independent",
+            SamplerKind::Stratified => "stratified",
+            SamplerKind::Sobol => "sobol",
+        }
+    }
+}
+
+impl fmt::Display for SamplerKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for SamplerKind {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        SamplerKind::ALL.into_iter().find(|k| k.name() == s).ok_or_else(|| {
+            let known: Vec<_> = SamplerKind::ALL.iter().map(|k| k.name()).collect();
+            format!("unknown sampler \"{s}\" (known: {})", known.join(", "))
+        })
+    }
+}
+
+/// Sobol points exist for sample indices below 2¹⁶ (the `sobol_burley` crate's limit);
+/// later samples fall back to independent numbers.
+pub const SOBOL_MAX_SAMPLES: u32 = 1 << 16;
+
+/// The uniform numbers of one pixel sample. Each call to `next_*` moves to the next
+/// dimension.
+#[derive(Clone, Debug)]
+pub struct Sampler {
+    kind: SamplerKind,
+    /// hash(seed, pixel): the same for every sample of the pixel.
+    pixel_key: u64,
+    sample_index: u32,
+    spp: u32,
+    dimension: u32,
+    rng: Rng32,
+}
+
+impl Sampler {
+    /// The stream for sample `sample_index` (of `spp` in all) of pixel `pixel`
+    /// (a linear index) under `seed`.
+    pub fn new(kind: SamplerKind, seed: u64, pixel: u64, sample_index: u32, spp: u32) -> Sampler {
+        let pixel_key = hash_words(&[seed, pixel]);
+        let kind = match kind {
+            SamplerKind::Sobol if sample_index >= SOBOL_MAX_SAMPLES => SamplerKind::Independent,
+            SamplerKind::Stratified if sample_index >= spp => SamplerKind::Independent,
+            k => k,
+        };
+        Sampler {
+            kind,
+            pixel_key,
+            sample_index,
+            spp: spp.max(1),
+            dimension: 0,
+            rng: Rng32::new(hash_words(&[pixel_key, sample_index as u64])),
+        }
+    }
+
+    /// The sampler kind actually in use for this sample (after fall-backs).
+    pub fn kind(&self) -> SamplerKind {
+        self.kind
+    }
+
+    #[inline]
+    fn dimension_key(&mut self) -> u64 {
+        let key = mix64(self.pixel_key ^ (self.dimension as u64).wrapping_mul(0x9e37_79b9));
+        self.dimension += 1;
+        key
+    }
+
+    /// The jittered stratum of this sample in a 1D or 2D pattern of `spp` cells.
+    fn stratified_cell(&mut self) -> (u32, u64) {
+        let key = self.dimension_key();
+        (permute(self.sample_index, self.spp, key as u32), key)
+    }
+}
+
+impl Uniform for Sampler {
+    #[inline]
+    fn next_1d(&mut self) -> f32 {
+        match self.kind {
+            SamplerKind::Independent => self.rng.next_f32(),
+            SamplerKind::Stratified => {
+                let (cell, _) = self.stratified_cell();
+                let jitter = self.rng.next_f32();
+                ((cell as f32 + jitter) / self.spp as f32).min(ONE_MINUS_EPSILON)
+            }
+            SamplerKind::Sobol => {
+                // Padding by reseeding (Burley 2020 §4): dimension 0 of a fresh
+                // shuffled, scrambled sequence for every 1D request.
+                let seed = self.dimension_key() as u32;
+                sobol_burley::sample(self.sample_index, 0, seed)
+            }
+        }
+    }
+
+    #[inline]
+    fn next_2d(&mut self) -> Vec2 {
+        match self.kind {
+            SamplerKind::Independent => Vec2::new(self.rng.next_f32(), self.rng.next_f32()),
+            SamplerKind::Stratified => {
+                let (cell, _) = self.stratified_cell();
+                let jitter = Vec2::new(self.rng.next_f32(), self.rng.next_f32());
+                equal_area_cell(cell, self.spp, jitter)
+            }
+            SamplerKind::Sobol => {
+                // Dimensions 0 and 1 of Sobol form a (0,2)-sequence: every 2D request
+                // uses that pair under its own seed.
+                let seed = self.dimension_key() as u32;
+                Vec2::new(
+                    sobol_burley::sample(self.sample_index, 0, seed),
+                    sobol_burley::sample(self.sample_index, 1, seed),
+                )
+            }
+        }
+    }
+}
+
+/// The largest `f32` below one.
+pub const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
+
+/// A point jittered inside cell `cell` of `n` equal-area cells that tile the unit square:
+/// ⌊√n⌋ rows, each cut into as many cells as its share of `n`, with row heights
+/// proportional to their cell counts so that every cell has area 1/n. For square `n`
+/// this is the usual jittered grid.
+pub fn equal_area_cell(cell: u32, n: u32, jitter: Vec2) -> Vec2 {
+    let rows = (n as f32).sqrt() as u32;
+    let rows = rows.clamp(1, n);
+    let base = n / rows;
+    let extra = n % rows;
+    // Rows 0..extra hold base + 1 cells, the rest hold base.
+    let (row, col, before) = if cell < extra * (base + 1) {
+        let r = cell / (base + 1);
+        (r, cell % (base + 1), r * (base + 1))
+    } else {
+        let c = cell - extra * (base + 1);
+        let r = extra + c / base;
+        (r, c % base, extra * (base + 1) + (r - extra) * base)
+    };
+    let cells_in_row = if row < extra { base + 1 } else { base };
+    let y0 = before as f32 / n as f32;
+    let height = cells_in_row as f32 / n as f32;
+    Vec2::new(
+        ((col as f32 + jitter.x) / cells_in_row as f32).min(ONE_MINUS_EPSILON),
+        (y0 + jitter.y * height).min(ONE_MINUS_EPSILON),
+    )
+}
+
+/// A pseudo-random permutation of 0..n evaluated at `i` (Kensler 2013, "Correlated
+/// Multi-Jittered Sampling", Pixar TM 13-01): a hashed bijection on the next power of
+/// two, cycle-walked back into range.
+pub fn permute(mut i: u32, n: u32, seed: u32) -> u32 {
+    if n <= 1 {
+        return 0;
+    }
+    let mut w = n - 1;
+    w |= w >> 1;
+    w |= w >> 2;
+    w |= w >> 4;
+    w |= w >> 8;
+    w |= w >> 16;
+    loop {
+        i ^= seed;
+        i = i.wrapping_mul(0xe170_893d);
+        i ^= seed >> 16;
+        i ^= (i & w) >> 4;
+        i ^= seed >> 8;
+        i = i.wrapping_mul(0x0929_eb3f);
+        i ^= seed >> 23;
+        i ^= (i & w) >> 1;
+        i = i.wrapping_mul(1 | seed >> 27);
+        i = i.wrapping_mul(0x6935_fa69);
+        i ^= (i & w) >> 11;
+        i = i.wrapping_mul(0x74dc_b303);
+        i ^= (i & w) >> 2;
+        i = i.wrapping_mul(0x9e50_1cc3);
+        i ^= (i & w) >> 2;
+        i = i.wrapping_mul(0xc860_a3df);
+        i &= w;
+        i ^= i >> 5;
+        if i < n {
+            break;
+        }
+    }
+    (i.wrapping_add(seed)) % n
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn permute_is_a_bijection() {
+        for n in [1u32, 2, 3, 7, 16, 100] {
+            let mut seen = vec![false; n as usize];
+            for i in 0..n {
+                let p = permute(i, n, 0x1234_5678);
+                assert!(!seen[p as usize]);
+                seen[p as usize] = true;
+            }
+        }
+    }
+
+    #[test]
+    fn equal_area_cells_cover_each_cell_once() {
+        for n in [1u32, 2, 3, 5, 8, 16, 17] {
+            let mut area = 0.0;
+            for c in 0..n {
+                let lo = equal_area_cell(c, n, Vec2::ZERO);
+                let hi = equal_area_cell(c, n, Vec2::splat(ONE_MINUS_EPSILON));
+                area += (hi.x - lo.x) * (hi.y - lo.y);
+                assert!(lo.cmpge(Vec2::ZERO).all() && hi.cmplt(Vec2::ONE).all());
+            }
+            assert!((area - 1.0).abs() < 1e-4, "n = {n}: area {area}");
+        }
+    }
+
+    #[test]
+    fn every_sampler_stays_in_unit_interval() {
+        for kind in SamplerKind::ALL {
+            for s in 0..64 {
+                let mut sampler = Sampler::new(kind, 7, 3, s, 64);
+                for _ in 0..10 {
+                    let x = sampler.next_1d();
+                    let p = sampler.next_2d();
+                    assert!((0.0..1.0).contains(&x) && (0.0..1.0).contains(&p.x));
+                    assert!((0.0..1.0).contains(&p.y));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn names_round_trip() {
+        for kind in SamplerKind::ALL {
+            assert_eq!(kind.name().parse::<SamplerKind>().unwrap(), kind);
+        }
+        assert!("halton".parse::<SamplerKind>().is_err());
+    }
+}
