@@ -11,3 +11,10 @@
 pub mod geometry;
 pub mod math;
 pub mod sampling;
+pub mod bsdf;
+pub mod cli;
+pub mod image;
+pub mod integrator;
+pub mod light;
+pub mod render;
+pub mod scene;

@@ -1,1 +1,5 @@
-fn main() {}
+//! The `lightlab` command line; everything lives in the library.
+
+fn main() {
+    std::process::exit(lightlab::cli::main());
+}

@@ -1,8 +1,18 @@
-//! Geometry: rays, boxes, shapes and their intersections, and the BVH that finds them.
+//! Geometry: rays, boxes, shapes and their intersections, meshes, hit records, and the
+//! BVH that finds the closest hit.
 
 pub mod aabb;
+pub mod bvh;
+pub mod hit;
+pub mod mesh;
 pub mod ray;
+pub mod scene_geometry;
+pub mod shape;
 pub mod triangle;
 
 pub use aabb::Aabb;
+pub use hit::{NO_LIGHT, SurfaceHit};
+pub use mesh::Mesh;
 pub use ray::{Ray, offset_origin};
+pub use scene_geometry::{Geometry, Primitive};
+pub use shape::Shape;

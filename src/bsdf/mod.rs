@@ -1,0 +1,119 @@
+//! BSDFs with the lecture's interface: `eval`, and a `sample`/`pdf` pair whose default
+//! draws uniform directions on the hemisphere, so any BSDF that overrides them with
+//! importance sampling "just gets better" without touching the estimators.
+//!
+//! Directions are in the local shading frame (normal = +z) and both point away from the
+//! surface. Knows nothing of lights or the renderer.
+
+mod diffuse;
+mod phong;
+
+pub use diffuse::Diffuse;
+pub use phong::Phong;
+
+use glam::{Vec2, Vec3};
+
+use crate::math::Spectrum;
+use crate::sampling::warp::{square_to_uniform_hemisphere, uniform_hemisphere_pdf};
+
+/// A direction drawn from a BSDF. `pdf` is per unit solid angle.
+#[derive(Clone, Copy, Debug)]
+pub struct BsdfSample {
+    /// Incident direction (local frame).
+    pub w_in: Vec3,
+    /// BSDF value f(w_in, w_out), cosine not included.
+    pub f: Spectrum,
+    /// Density of `w_in` per steradian.
+    pub pdf: f32,
+    /// `f` and `pdf` are Dirac weights.
+    pub delta: bool,
+}
+
+/// A BSDF. The lecture's `BRDF::sample(normal, w_out, w_in&, pdf&)` is
+/// `sample(w_out, u)` in the local frame, where the normal is +z.
+pub trait Bsdf {
+    /// f(w_in, w_out); zero for delta lobes and below the surface.
+    fn eval(&self, w_in: Vec3, w_out: Vec3) -> Spectrum;
+
+    /// Draws w_in for a given w_out. Default: uniform on the hemisphere (z, φ).
+    /// Override `sample` and `pdf` together.
+    fn sample(&self, w_out: Vec3, u: Vec2) -> Option<BsdfSample> {
+        if w_out.z <= 0.0 {
+            return None;
+        }
+        let (w_in, pdf) = square_to_uniform_hemisphere(u);
+        Some(BsdfSample { w_in, f: self.eval(w_in, w_out), pdf, delta: false })
+    }
+
+    /// Density of `sample` choosing `w_in` given `w_out`, per steradian.
+    fn pdf(&self, w_in: Vec3, w_out: Vec3) -> f32 {
+        if w_out.z <= 0.0 { 0.0 } else { uniform_hemisphere_pdf(w_in) }
+    }
+
+    /// True when every lobe is a Dirac delta (light sampling cannot help).
+    fn is_delta(&self) -> bool {
+        false
+    }
+}
+
+/// The closed set of materials a scene can use: one `match` forwards each call.
+#[derive(Clone, Debug)]
+pub enum Material {
+    /// Lambertian.
+    Diffuse(Diffuse),
+    /// Energy-normalised modified Phong.
+    Phong(Phong),
+}
+
+macro_rules! forward {
+    ($self:ident, $m:ident => $e:expr) => {
+        match $self {
+            Material::Diffuse($m) => $e,
+            Material::Phong($m) => $e,
+        }
+    };
+}
+
+impl Bsdf for Material {
+    #[inline]
+    fn eval(&self, w_in: Vec3, w_out: Vec3) -> Spectrum {
+        forward!(self, m => m.eval(w_in, w_out))
+    }
+
+    #[inline]
+    fn sample(&self, w_out: Vec3, u: Vec2) -> Option<BsdfSample> {
+        forward!(self, m => m.sample(w_out, u))
+    }
+
+    #[inline]
+    fn pdf(&self, w_in: Vec3, w_out: Vec3) -> f32 {
+        forward!(self, m => m.pdf(w_in, w_out))
+    }
+
+    fn is_delta(&self) -> bool {
+        forward!(self, m => m.is_delta())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A BSDF that only knows how to evaluate itself gets the uniform default.
+    struct EvalOnly;
+    impl Bsdf for EvalOnly {
+        fn eval(&self, w_in: Vec3, w_out: Vec3) -> Spectrum {
+            Spectrum::splat(((w_in.z > 0.0) && (w_out.z > 0.0)) as u8 as f32 * 0.25)
+        }
+    }
+
+    #[test]
+    fn default_sampling_is_uniform_hemisphere() {
+        let w_out = Vec3::Z;
+        let s = EvalOnly.sample(w_out, Vec2::new(0.3, 0.6)).expect("sample");
+        assert!((s.w_in.z - 0.3).abs() < 1e-6);
+        assert!((s.pdf - 0.5 / std::f32::consts::PI).abs() < 1e-6);
+        assert_eq!(s.pdf, EvalOnly.pdf(s.w_in, w_out));
+        assert!(EvalOnly.sample(-Vec3::Z, Vec2::splat(0.5)).is_none());
+    }
+}

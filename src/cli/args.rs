@@ -1,0 +1,87 @@
+//! Flags shared by every subcommand that renders: the strategies, sampler and budget.
+
+use clap::Args;
+
+use super::CliError;
+use crate::integrator::EstimatorKind;
+use crate::light::LightSampling;
+use crate::light::select::LightSelect;
+use crate::render::{Pass, RenderSettings};
+use crate::sampling::SamplerKind;
+use crate::scene::Scene;
+
+/// Strategy, sampler and budget flags.
+#[derive(Args, Debug, Clone, Default)]
+pub struct StrategyArgs {
+    /// Direct-lighting estimator: hemisphere, hemisphere-rejection, cosine, bsdf, light.
+    #[arg(long)]
+    pub estimator: Option<EstimatorKind>,
+    /// Area-light sampling strategy: area.
+    #[arg(long)]
+    pub light_sampling: Option<LightSampling>,
+    /// Light selection among many lights: uniform.
+    #[arg(long)]
+    pub light_select: Option<LightSelect>,
+    /// Sampler: independent, stratified, sobol.
+    #[arg(long)]
+    pub sampler: Option<SamplerKind>,
+    /// Samples per pixel (default: the scene's).
+    #[arg(long)]
+    pub spp: Option<u32>,
+    /// Seed of every random stream.
+    #[arg(long)]
+    pub seed: Option<u64>,
+    /// Image width (overrides the scene's; height follows the aspect unless given).
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Image height.
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// Render only pass I of N (sample indices split evenly): `--pass 2/8`.
+    #[arg(long)]
+    pub pass: Option<Pass>,
+}
+
+impl StrategyArgs {
+    /// The settings for `scene` with these flags applied over its defaults.
+    pub fn settings(&self, scene: &Scene) -> Result<RenderSettings, CliError> {
+        let mut s = RenderSettings::for_scene(scene);
+        if let Some(v) = self.estimator {
+            s.estimator = v;
+        }
+        if let Some(v) = self.light_sampling {
+            s.light_sampling = v;
+        }
+        if let Some(v) = self.light_select {
+            s.light_select = v;
+        }
+        if let Some(v) = self.sampler {
+            s.sampler = v;
+        }
+        if let Some(v) = self.spp {
+            if v == 0 {
+                return Err(CliError::input("--spp must be at least 1"));
+            }
+            s.spp = v;
+        }
+        if let Some(v) = self.seed {
+            s.seed = v;
+        }
+        if let Some(v) = self.pass {
+            s.pass = v;
+        }
+        let (cw, ch) = (scene.camera.width, scene.camera.height);
+        s.resolution = match (self.width, self.height) {
+            (None, None) => None,
+            (Some(w), None) => Some((w, ((w as u64 * ch as u64) / cw as u64).max(1) as u32)),
+            (None, Some(h)) => Some((((h as u64 * cw as u64) / ch as u64).max(1) as u32, h)),
+            (Some(w), Some(h)) => Some((w, h)),
+        };
+        if let Some((w, h)) = s.resolution
+            && (w == 0 || h == 0 || w > 32768 || h > 32768)
+        {
+            return Err(CliError::input(format!("image size {w}x{h} is out of range (1..=32768)")));
+        }
+        Ok(s)
+    }
+}

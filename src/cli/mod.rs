@@ -1,0 +1,70 @@
+//! The command line: parses arguments and calls the library, one file per subcommand.
+
+mod args;
+mod diff;
+mod render;
+mod scenes;
+
+use clap::{Parser, Subcommand};
+
+pub use args::StrategyArgs;
+
+/// An error the CLI prints before exiting with `code`.
+#[derive(Debug)]
+pub struct CliError {
+    /// What went wrong (already located: file, line, element).
+    pub message: String,
+    /// Exit code: 2 for bad input, 1 for failures while working.
+    pub code: i32,
+}
+
+impl CliError {
+    /// Bad input (exit code 2).
+    pub fn input(message: impl ToString) -> CliError {
+        CliError { message: message.to_string(), code: 2 }
+    }
+    /// A failure while working (exit code 1).
+    pub fn failure(message: impl ToString) -> CliError {
+        CliError { message: message.to_string(), code: 1 }
+    }
+}
+
+#[derive(Parser, Debug)]
+#[command(name = "lightlab", version, about = "A renderer and laboratory for Monte Carlo direct illumination and importance sampling")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Render a scene (default: the built-in `assignment` scene) to .png, .exr or .pfm.
+    Render(render::RenderArgs),
+    /// Compare an image with a reference: MSE, relMSE, bias, NaN/Inf counts.
+    Diff(diff::DiffArgs),
+    /// List the built-in scenes.
+    Scenes,
+}
+
+/// Runs the CLI on the process arguments and returns the exit code.
+pub fn main() -> i32 {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            let _ = e.print();
+            return if e.use_stderr() { 2 } else { 0 };
+        }
+    };
+    let result = match cli.command {
+        Command::Render(a) => render::run(&a),
+        Command::Diff(a) => diff::run(&a),
+        Command::Scenes => scenes::run(),
+    };
+    match result {
+        Ok(()) => 0,
+        Err(e) => {
+            eprintln!("error: {}", e.message);
+            e.code
+        }
+    }
+}

@@ -1,0 +1,58 @@
+//! Disks.
+
+use glam::{Vec2, Vec3};
+
+use super::ShapeHit;
+use crate::geometry::{Aabb, Ray};
+use crate::math::{Frame, PI};
+
+/// A disk of radius `radius` around `center`, front side `normal`.
+#[derive(Clone, Copy, Debug)]
+pub struct Disk {
+    /// Centre.
+    pub center: Vec3,
+    /// Unit normal (front side).
+    pub normal: Vec3,
+    /// Radius.
+    pub radius: f32,
+}
+
+impl Disk {
+    /// Bounding box (tight per axis: extent r·√(1 − n_i²)).
+    pub fn bounds(&self) -> Aabb {
+        let e = self.radius * (Vec3::ONE - self.normal * self.normal).max(Vec3::ZERO).powf(0.5);
+        Aabb { min: self.center - e, max: self.center + e }
+    }
+
+    /// Area πr².
+    pub fn area(&self) -> f32 {
+        PI * self.radius * self.radius
+    }
+
+    /// The local frame (normal on +z).
+    pub fn frame(&self) -> Frame {
+        Frame::from_normal(self.normal)
+    }
+
+    /// Nearest intersection in (0, t_max); both sides count. uv = (r/R, φ/2π).
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
+        let denom = ray.d.dot(self.normal);
+        if denom == 0.0 {
+            return None;
+        }
+        let t = (self.center - ray.o).dot(self.normal) / denom;
+        if !(t > 0.0 && t < t_max) {
+            return None;
+        }
+        let q = ray.at(t) - self.center;
+        let r2 = q.length_squared();
+        if r2 > self.radius * self.radius {
+            return None;
+        }
+        let local = self.frame().to_local(q);
+        let phi = local.y.atan2(local.x);
+        let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
+        Some(ShapeHit { t, uv: Vec2::new(r2.sqrt() / self.radius, phi / (2.0 * PI)) })
+    }
+}

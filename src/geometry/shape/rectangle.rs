@@ -1,0 +1,70 @@
+//! Rectangles: a corner and two perpendicular edges (the lecture's a, b − a, d − a).
+
+use glam::{Vec2, Vec3};
+
+use super::ShapeHit;
+use crate::geometry::{Aabb, Ray};
+
+/// A rectangle { o + α·ea + β·eb : α, β ∈ [0, 1] } with ea ⟂ eb. Its front side is
+/// n = ea × eb / |ea × eb|.
+#[derive(Clone, Copy, Debug)]
+pub struct Rectangle {
+    /// Corner (the lecture's a).
+    pub o: Vec3,
+    /// First edge (b − a).
+    pub ea: Vec3,
+    /// Second edge (d − a).
+    pub eb: Vec3,
+    /// Unit normal.
+    pub normal: Vec3,
+}
+
+impl Rectangle {
+    /// A rectangle from a corner and two edges; `None` when the edges are degenerate or
+    /// not perpendicular (to 1e-3 relative).
+    pub fn new(o: Vec3, ea: Vec3, eb: Vec3) -> Option<Rectangle> {
+        let n = ea.cross(eb);
+        let len = n.length();
+        let perpendicular = ea.dot(eb).abs() <= 1e-3 * ea.length() * eb.length();
+        (len > 0.0 && len.is_finite() && perpendicular).then(|| Rectangle { o, ea, eb, normal: n / len })
+    }
+
+    /// The four corners a, b, c, d in order.
+    pub fn corners(&self) -> [Vec3; 4] {
+        [self.o, self.o + self.ea, self.o + self.ea + self.eb, self.o + self.eb]
+    }
+
+    /// Bounding box.
+    pub fn bounds(&self) -> Aabb {
+        Aabb::from_points(&self.corners())
+    }
+
+    /// Area |ea × eb|.
+    pub fn area(&self) -> f32 {
+        self.ea.cross(self.eb).length()
+    }
+
+    /// The point at parameters (α, β).
+    #[inline]
+    pub fn point(&self, uv: Vec2) -> Vec3 {
+        self.o + uv.x * self.ea + uv.y * self.eb
+    }
+
+    /// Nearest intersection in (0, t_max); both sides count.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
+        let denom = ray.d.dot(self.normal);
+        if denom == 0.0 {
+            return None;
+        }
+        let t = (self.o - ray.o).dot(self.normal) / denom;
+        if !(t > 0.0 && t < t_max) {
+            return None;
+        }
+        let q = ray.at(t) - self.o;
+        let alpha = q.dot(self.ea) / self.ea.length_squared();
+        let beta = q.dot(self.eb) / self.eb.length_squared();
+        ((0.0..=1.0).contains(&alpha) && (0.0..=1.0).contains(&beta))
+            .then_some(ShapeHit { t, uv: Vec2::new(alpha, beta) })
+    }
+}

@@ -1,0 +1,131 @@
+//! Error metrics of an image against a reference: MSE, relMSE, the relative bias of the
+//! image sum with its standard error, and non-finite counts; plus a false-colour map.
+
+use crate::math::Spectrum;
+
+/// The ε in relMSE = mean((v − r)²/(r² + ε)), which keeps dark pixels from dominating.
+pub const REL_MSE_EPSILON: f32 = 0.01;
+
+/// How an image differs from a reference.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ErrorReport {
+    /// Mean squared error over pixels and channels.
+    pub mse: f64,
+    /// Mean of (v − r)²/(r² + 0.01) over pixels and channels.
+    pub rel_mse: f64,
+    /// (Σv − Σr)/Σr over pixels and channels.
+    pub relative_bias: f64,
+    /// Standard error of `relative_bias`, from the image's per-pixel variance (and the
+    /// reference's, when it has one).
+    pub bias_std_error: Option<f64>,
+    /// Pixels (of the image) with a NaN channel.
+    pub nan_pixels: usize,
+    /// Pixels (of the image) with an infinite channel.
+    pub inf_pixels: usize,
+}
+
+impl ErrorReport {
+    /// The bias in standard errors (None without variance).
+    pub fn bias_z(&self) -> Option<f64> {
+        self.bias_std_error.filter(|s| *s > 0.0).map(|s| self.relative_bias / s)
+    }
+}
+
+/// Per-pixel relative squared error, averaged over channels.
+#[inline]
+pub fn pixel_rel_mse(v: Spectrum, r: Spectrum) -> f32 {
+    let d = v - r;
+    ((d * d) / (r * r + Spectrum::splat(REL_MSE_EPSILON))).element_sum() / 3.0
+}
+
+/// Compares `image` (with optional variance of each pixel's mean) to `reference`.
+/// Non-finite pixels are counted and left out of the sums. Slices must have equal length.
+pub fn compare(image: &[Spectrum], variance: Option<&[Spectrum]>, reference: &[Spectrum], reference_variance: Option<&[Spectrum]>) -> ErrorReport {
+    let (mut se, mut rel, mut sum_v, mut sum_r, mut var) = (0f64, 0f64, 0f64, 0f64, 0f64);
+    let (mut nan, mut inf, mut n) = (0, 0, 0usize);
+    for (i, (&v, &r)) in image.iter().zip(reference).enumerate() {
+        if v.is_nan() {
+            nan += 1;
+            continue;
+        }
+        if !v.is_finite() {
+            inf += 1;
+            continue;
+        }
+        let d = v - r;
+        se += (d * d).element_sum() as f64;
+        rel += pixel_rel_mse(v, r) as f64 * 3.0;
+        sum_v += v.element_sum() as f64;
+        sum_r += r.element_sum() as f64;
+        if let Some(vv) = variance {
+            var += vv[i].element_sum() as f64;
+        }
+        if let Some(rv) = reference_variance {
+            var += rv[i].element_sum() as f64;
+        }
+        n += 3;
+    }
+    let n = n.max(1) as f64;
+    let has_var = variance.is_some() || reference_variance.is_some();
+    ErrorReport {
+        mse: se / n,
+        rel_mse: rel / n,
+        relative_bias: if sum_r != 0.0 { (sum_v - sum_r) / sum_r } else { 0.0 },
+        bias_std_error: (has_var && sum_r != 0.0).then(|| var.sqrt() / sum_r.abs()),
+        nan_pixels: nan,
+        inf_pixels: inf,
+    }
+}
+
+/// A colour for t in [0, 1] on a perceptually ordered dark-blue → yellow ramp (five
+/// stops sampled from matplotlib's viridis).
+pub fn ramp(t: f32) -> [u8; 3] {
+    const STOPS: [[f32; 3]; 5] = [
+        [68.0, 1.0, 84.0],
+        [59.0, 82.0, 139.0],
+        [33.0, 145.0, 140.0],
+        [94.0, 201.0, 98.0],
+        [253.0, 231.0, 37.0],
+    ];
+    let t = if t.is_finite() { t.clamp(0.0, 1.0) } else { 1.0 };
+    let x = t * 4.0;
+    let i = (x as usize).min(3);
+    let f = x - i as f32;
+    let (a, b) = (STOPS[i], STOPS[i + 1]);
+    [0, 1, 2].map(|c| (a[c] + (b[c] - a[c]) * f + 0.5) as u8)
+}
+
+/// False-colour bytes (RGB8) of per-pixel relMSE on a log scale from 10⁻⁴ (dark) to
+/// 10 (bright); non-finite pixels are magenta.
+pub fn false_color(image: &[Spectrum], reference: &[Spectrum]) -> Vec<u8> {
+    image
+        .iter()
+        .zip(reference)
+        .flat_map(|(&v, &r)| {
+            if !v.is_finite() {
+                return [255, 0, 255];
+            }
+            let e = pixel_rel_mse(v, r).max(1e-12).log10();
+            ramp((e + 4.0) / 5.0)
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hand_computed_values() {
+        let r = [Spectrum::splat(1.0), Spectrum::splat(0.0)];
+        let v = [Spectrum::splat(2.0), Spectrum::splat(0.1)];
+        let e = compare(&v, None, &r, None);
+        assert!((e.mse - (1.0 + 0.01) / 2.0).abs() < 1e-6);
+        assert!((e.rel_mse - (1.0 / 1.01 + 0.01 / 0.01) / 2.0).abs() < 1e-5);
+        assert!((e.relative_bias - (6.3 - 3.0) / 3.0).abs() < 1e-5);
+        let same = compare(&r, None, &r, None);
+        assert_eq!((same.mse, same.rel_mse, same.relative_bias), (0.0, 0.0, 0.0));
+        let nan = compare(&[Spectrum::splat(f32::NAN), Spectrum::splat(f32::INFINITY)], None, &r, None);
+        assert_eq!((nan.nan_pixels, nan.inf_pixels), (1, 1));
+    }
+}

@@ -1,0 +1,8 @@
+//! Images: the film that accumulates samples (count, mean, running variance), file
+//! input/output (EXR with variance, PNG, PFM), and error metrics against a reference.
+
+pub mod film;
+pub mod io;
+pub mod metrics;
+
+pub use film::{Film, PixelStats};

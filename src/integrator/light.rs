@@ -1,0 +1,51 @@
+//! The light estimator (area form): choose a light, draw a point y on it, and score
+//! f · G · V · Le / p_A — computed here as f · cos θ_x · Le / p_ω with the density
+//! converted to solid angle, which is the same quantity.
+
+use glam::Vec3;
+
+use super::f_cos;
+use crate::bsdf::Material;
+use crate::geometry::SurfaceHit;
+use crate::light::ShadingPoint;
+use crate::light::select::{LightSelector, Selector};
+use crate::math::Spectrum;
+use crate::sampling::Uniform;
+use crate::scene::Scene;
+
+/// One sample of the light estimator. The selection number is reused for nothing else
+/// here; the point on the light takes its own two numbers.
+pub(super) fn estimate(
+    scene: &Scene,
+    selector: &Selector,
+    at: &ShadingPoint,
+    hit: &SurfaceHit,
+    material: &Material,
+    w_out: Vec3,
+    src: &mut impl Uniform,
+) -> Spectrum {
+    let u_select = src.next_1d();
+    let u_point = src.next_2d();
+    let Some(sel) = selector.select(at, u_select) else {
+        return Spectrum::ZERO;
+    };
+    let light = &scene.lights[sel.index];
+    // Horizon rejection happens inside `sample`, before any shadow ray.
+    let Some(ls) = light.sample(at, u_point) else {
+        return Spectrum::ZERO;
+    };
+    let w_in = hit.frame.to_local(ls.w_in);
+    let f = f_cos(material, w_in, w_out);
+    if f == Spectrum::ZERO {
+        return Spectrum::ZERO;
+    }
+    let occluded = if ls.delta {
+        scene.geometry.direction_occluded(hit.p, hit.ng, ls.w_in, ls.distance)
+    } else {
+        scene.geometry.segment_occluded(hit.p, hit.ng, ls.point, ls.normal)
+    };
+    if occluded {
+        return Spectrum::ZERO;
+    }
+    f * ls.radiance / (ls.pdf * sel.pmf)
+}

@@ -1,0 +1,132 @@
+//! Direct-lighting estimators: one radiance sample per call of L_out(x, ω_out) =
+//! ∫ f · cos θ · L_in dω (directional form) or ∫ f · G · V · Le dA (area form).
+//!
+//! Directional estimators draw ω and trace it to find an emitter; the light estimator
+//! draws a point on a light and traces one shadow ray.
+
+mod directional;
+mod light;
+
+use std::fmt;
+use std::str::FromStr;
+
+use glam::Vec3;
+
+use crate::bsdf::Bsdf;
+use crate::geometry::{NO_LIGHT, Ray, SurfaceHit};
+use crate::light::ShadingPoint;
+use crate::light::select::{LightSelect, Selector};
+use crate::math::Spectrum;
+use crate::sampling::Uniform;
+use crate::scene::Scene;
+
+/// The direct-lighting strategy, by CLI name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum EstimatorKind {
+    /// Uniform directions by (z, φ), weight 2π.
+    Hemisphere,
+    /// Uniform directions by rejection from the cube [-1, 1]³.
+    HemisphereRejection,
+    /// Cosine-weighted directions (Malley's method).
+    Cosine,
+    /// The BSDF's own `sample`.
+    Bsdf,
+    /// A point on a light (area form), one shadow ray.
+    Light,
+}
+
+impl EstimatorKind {
+    /// Every estimator, in CLI order.
+    pub const ALL: [EstimatorKind; 5] = [
+        EstimatorKind::Hemisphere,
+        EstimatorKind::HemisphereRejection,
+        EstimatorKind::Cosine,
+        EstimatorKind::Bsdf,
+        EstimatorKind::Light,
+    ];
+
+    /// CLI name.
+    pub fn name(self) -> &'static str {
+        match self {
+            EstimatorKind::Hemisphere => "hemisphere",
+            EstimatorKind::HemisphereRejection => "hemisphere-rejection",
+            EstimatorKind::Cosine => "cosine",
+            EstimatorKind::Bsdf => "bsdf",
+            EstimatorKind::Light => "light",
+        }
+    }
+}
+
+impl fmt::Display for EstimatorKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for EstimatorKind {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        EstimatorKind::ALL.into_iter().find(|k| k.name() == s).ok_or_else(|| {
+            let known: Vec<_> = EstimatorKind::ALL.iter().map(|k| k.name()).collect();
+            format!("unknown estimator \"{s}\" (known: {})", known.join(", "))
+        })
+    }
+}
+
+/// A direct-lighting estimator bound to a scene: the strategy and the light selector.
+#[derive(Clone, Debug)]
+pub struct Estimator {
+    /// The strategy.
+    pub kind: EstimatorKind,
+    /// Chooses a light for the light estimator.
+    pub selector: Selector,
+}
+
+impl Estimator {
+    /// The estimator `kind` for `scene`, choosing lights with `select`.
+    pub fn new(scene: &Scene, kind: EstimatorKind, select: LightSelect) -> Estimator {
+        let powers: Vec<f32> = scene.lights.iter().map(|l| l.power()).collect();
+        Estimator { kind, selector: Selector::new(select, &powers) }
+    }
+
+    /// Radiance along a camera ray: emission seen directly plus one estimate of direct
+    /// illumination at the first hit.
+    pub fn radiance(&self, scene: &Scene, ray: &Ray, src: &mut impl Uniform) -> Spectrum {
+        let Some(hit) = scene.geometry.intersect(ray, f32::INFINITY) else {
+            return Spectrum::ZERO;
+        };
+        let w_out = -ray.d.normalize();
+        emitted_at(scene, &hit, w_out) + self.direct(scene, &hit, w_out, src)
+    }
+
+    /// One sample of reflected direct light L_out(x, ω_out) at a surface hit.
+    pub fn direct(&self, scene: &Scene, hit: &SurfaceHit, w_out: Vec3, src: &mut impl Uniform) -> Spectrum {
+        let material = &scene.materials[hit.material as usize];
+        let w_out_local = hit.frame.to_local(w_out);
+        if w_out_local.z <= 0.0 || w_out.dot(hit.ng) <= 0.0 {
+            return Spectrum::ZERO; // seen from behind: one-sided BSDFs reflect nothing
+        }
+        let at = ShadingPoint { p: hit.p, ng: hit.ng, n: hit.frame.n };
+        match self.kind {
+            EstimatorKind::Light => light::estimate(scene, &self.selector, &at, hit, material, w_out_local, src),
+            kind => directional::estimate(scene, kind, hit, material, w_out_local, src),
+        }
+    }
+}
+
+/// Radiance emitted by the surface at `hit` towards `w` (world direction, pointing away
+/// from the surface).
+#[inline]
+pub fn emitted_at(scene: &Scene, hit: &SurfaceHit, w: Vec3) -> Spectrum {
+    if hit.light == NO_LIGHT {
+        return Spectrum::ZERO;
+    }
+    scene.lights[hit.light as usize].emitted(hit.ng, w)
+}
+
+/// f · |cos θ| for a local incident direction: the part of the integrand every
+/// estimator shares.
+#[inline]
+fn f_cos(material: &impl Bsdf, w_in_local: Vec3, w_out_local: Vec3) -> Spectrum {
+    material.eval(w_in_local, w_out_local) * w_in_local.z.abs()
+}

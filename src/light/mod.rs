@@ -1,0 +1,106 @@
+//! Light sources: diffuse area emitters on shapes and point lights; light selection for
+//! many lights. Knows nothing of the renderer; the integrators ask lights for samples
+//! and densities at a shading point.
+
+mod area;
+mod point;
+pub mod select;
+
+pub use area::{AreaLight, LightSampling};
+pub use point::PointLight;
+
+use glam::{Vec2, Vec3};
+
+use crate::math::Spectrum;
+
+/// What a light needs to know of the point it illuminates.
+#[derive(Clone, Copy, Debug)]
+pub struct ShadingPoint {
+    /// Position.
+    pub p: Vec3,
+    /// Geometric normal (for ray offsets).
+    pub ng: Vec3,
+    /// Shading normal (for the cosine term and the horizon test).
+    pub n: Vec3,
+}
+
+/// Light arriving at a shading point. `pdf` is per unit solid angle at that point.
+#[derive(Clone, Copy, Debug)]
+pub struct LightSample {
+    /// Unit direction from the shading point towards the light.
+    pub w_in: Vec3,
+    /// Distance to the sampled point.
+    pub distance: f32,
+    /// Emitted radiance towards the shading point.
+    pub radiance: Spectrum,
+    /// Density per steradian (Dirac weight 1 for delta lights).
+    pub pdf: f32,
+    /// The sample came from a delta distribution (point light).
+    pub delta: bool,
+    /// The point on the light.
+    pub point: Vec3,
+    /// Geometric normal of the light at `point` (zero for point lights).
+    pub normal: Vec3,
+}
+
+/// Converts a density per unit area at `y` into a density per steradian at `x`:
+/// p_ω = p_A · |x − y|² / |cos θ_y| (the change of variables between the area and the
+/// directional forms of the rendering integral). Zero when the light is seen edge-on.
+#[inline]
+pub fn area_to_solid_angle(pdf_area: f32, distance_squared: f32, cos_theta_y: f32) -> f32 {
+    let c = cos_theta_y.abs();
+    if c <= 0.0 { 0.0 } else { pdf_area * distance_squared / c }
+}
+
+/// A light source of the scene (a closed set: one `match` per call).
+#[derive(Clone, Debug)]
+pub enum Light {
+    /// A diffuse emitter on a shape.
+    Area(AreaLight),
+    /// A point light.
+    Point(PointLight),
+}
+
+impl Light {
+    /// Draws a direction towards the light from `at`; `None` when the sample carries no
+    /// light (behind the emitter, below the horizon of `at`, or a degenerate case).
+    #[inline]
+    pub fn sample(&self, at: &ShadingPoint, u: Vec2) -> Option<LightSample> {
+        match self {
+            Light::Area(l) => l.sample(at, u),
+            Light::Point(l) => l.sample(at),
+        }
+    }
+
+    /// Density per steradian at `at` of sampling the direction towards `y` (a point on
+    /// this light with geometric normal `ny`). Zero for delta lights.
+    #[inline]
+    pub fn pdf(&self, at: &ShadingPoint, y: Vec3, ny: Vec3) -> f32 {
+        match self {
+            Light::Area(l) => l.pdf(at, y, ny),
+            Light::Point(_) => 0.0,
+        }
+    }
+
+    /// Radiance emitted from a point with normal `ny` in direction `w` (away from it).
+    #[inline]
+    pub fn emitted(&self, ny: Vec3, w: Vec3) -> Spectrum {
+        match self {
+            Light::Area(l) => l.emitted(ny, w),
+            Light::Point(_) => Spectrum::ZERO,
+        }
+    }
+
+    /// Emitted power Φ (luminance of the RGB power), for selection by power.
+    pub fn power(&self) -> f32 {
+        match self {
+            Light::Area(l) => l.power(),
+            Light::Point(l) => l.power(),
+        }
+    }
+
+    /// True for delta lights, which directional strategies can never hit.
+    pub fn is_delta(&self) -> bool {
+        matches!(self, Light::Point(_))
+    }
+}

@@ -1,0 +1,98 @@
+//! Choosing one light among many (lecture: "we can unite all light sources to a single
+//! large one"): a selector draws a light with a probability and hands back the random
+//! number rescaled, so the same number can be used again.
+
+mod uniform;
+
+pub use uniform::UniformSelector;
+
+use std::fmt;
+use std::str::FromStr;
+
+use super::ShadingPoint;
+
+/// A chosen light, its probability, and `u` rescaled to [0, 1) so it can be used again.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Selection {
+    /// Light index.
+    pub index: usize,
+    /// Probability of choosing it.
+    pub pmf: f32,
+    /// The random number, rescaled within the chosen light's interval.
+    pub u_reused: f32,
+}
+
+/// Picks lights. `select` and `pmf` must agree exactly.
+pub trait LightSelector {
+    /// Chooses a light for shading point `at` with uniform number `u`.
+    fn select(&self, at: &ShadingPoint, u: f32) -> Option<Selection>;
+    /// Probability that `select` chooses light `index` at `at`.
+    fn pmf(&self, at: &ShadingPoint, index: usize) -> f32;
+}
+
+/// Light selection strategy, by CLI name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum LightSelect {
+    /// i = ⌊ξ·n⌋ (lecture solution #1).
+    Uniform,
+}
+
+impl LightSelect {
+    /// Every strategy, in CLI order.
+    pub const ALL: [LightSelect; 1] = [LightSelect::Uniform];
+
+    /// CLI name.
+    pub fn name(self) -> &'static str {
+        match self {
+            LightSelect::Uniform => "uniform",
+        }
+    }
+}
+
+impl fmt::Display for LightSelect {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for LightSelect {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        LightSelect::ALL.into_iter().find(|k| k.name() == s).ok_or_else(|| {
+            let known: Vec<_> = LightSelect::ALL.iter().map(|k| k.name()).collect();
+            format!("unknown light selection \"{s}\" (known: {})", known.join(", "))
+        })
+    }
+}
+
+/// The scene's selector (closed set, one `match`).
+#[derive(Clone, Debug)]
+pub enum Selector {
+    /// Uniform choice.
+    Uniform(UniformSelector),
+}
+
+impl Selector {
+    /// Builds the selector `kind` over lights with the given powers.
+    pub fn new(kind: LightSelect, powers: &[f32]) -> Selector {
+        match kind {
+            LightSelect::Uniform => Selector::Uniform(UniformSelector::new(powers.len())),
+        }
+    }
+}
+
+impl LightSelector for Selector {
+    #[inline]
+    fn select(&self, at: &ShadingPoint, u: f32) -> Option<Selection> {
+        match self {
+            Selector::Uniform(s) => s.select(at, u),
+        }
+    }
+
+    #[inline]
+    fn pmf(&self, at: &ShadingPoint, index: usize) -> f32 {
+        match self {
+            Selector::Uniform(s) => s.pmf(at, index),
+        }
+    }
+}

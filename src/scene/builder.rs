@@ -1,0 +1,130 @@
+//! Building scenes in code: add shapes with materials and emission, then `build`.
+
+use glam::Vec3;
+
+use super::{Scene, SceneError};
+use crate::bsdf::Material;
+use crate::geometry::shape::{Disk, Rectangle, Sphere, Triangle};
+use crate::geometry::{Geometry, Mesh, NO_LIGHT, Primitive, Shape};
+use crate::light::{AreaLight, Light, LightSampling, PointLight};
+use crate::math::Spectrum;
+use crate::render::camera::Camera;
+
+/// Emission of a shape: radiance and sidedness.
+#[derive(Clone, Copy, Debug)]
+pub struct Emission {
+    /// Radiance.
+    pub radiance: Spectrum,
+    /// Emits from both sides.
+    pub two_sided: bool,
+}
+
+impl Emission {
+    /// One-sided emission of radiance `r`.
+    pub fn new(r: Spectrum) -> Emission {
+        Emission { radiance: r, two_sided: false }
+    }
+}
+
+/// Collects shapes, materials and lights into a [`Scene`].
+#[derive(Debug)]
+pub struct SceneBuilder {
+    name: String,
+    prims: Vec<Primitive>,
+    meshes: Vec<Mesh>,
+    materials: Vec<Material>,
+    lights: Vec<Light>,
+}
+
+impl SceneBuilder {
+    /// An empty scene called `name`.
+    pub fn new(name: impl Into<String>) -> SceneBuilder {
+        SceneBuilder { name: name.into(), prims: Vec::new(), meshes: Vec::new(), materials: Vec::new(), lights: Vec::new() }
+    }
+
+    /// Adds a material and returns its index.
+    pub fn material(&mut self, m: Material) -> u32 {
+        self.materials.push(m);
+        self.materials.len() as u32 - 1
+    }
+
+    /// Adds a shape; if it emits, it also becomes a light.
+    pub fn shape(&mut self, shape: Shape, material: u32, emission: Option<Emission>) -> &mut Self {
+        let light = match emission {
+            Some(e) => {
+                self.lights.push(Light::Area(AreaLight {
+                    shape,
+                    radiance: e.radiance,
+                    two_sided: e.two_sided,
+                    sampling: LightSampling::Area,
+                }));
+                self.lights.len() as u32 - 1
+            }
+            None => NO_LIGHT,
+        };
+        self.prims.push(Primitive { shape, material, light });
+        self
+    }
+
+    /// Adds a sphere.
+    pub fn sphere(&mut self, center: Vec3, radius: f32, material: u32, emission: Option<Emission>) -> &mut Self {
+        self.shape(Shape::Sphere(Sphere { center, radius }), material, emission)
+    }
+
+    /// Adds a rectangle with corner `o` and perpendicular edges `ea`, `eb` (front side
+    /// ea × eb). Non-perpendicular or degenerate edges are a programming error in a
+    /// built-in scene and are reported when the scene is built.
+    pub fn rectangle(&mut self, o: Vec3, ea: Vec3, eb: Vec3, material: u32, emission: Option<Emission>) -> &mut Self {
+        match Rectangle::new(o, ea, eb) {
+            Some(r) => self.shape(Shape::Rectangle(r), material, emission),
+            None => {
+                // Keep a degenerate marker so `build` can report it.
+                self.prims.push(Primitive {
+                    shape: Shape::Disk(Disk { center: o, normal: Vec3::ZERO, radius: f32::NAN }),
+                    material,
+                    light: NO_LIGHT,
+                });
+                self
+            }
+        }
+    }
+
+    /// Adds a disk.
+    pub fn disk(&mut self, center: Vec3, normal: Vec3, radius: f32, material: u32, emission: Option<Emission>) -> &mut Self {
+        self.shape(Shape::Disk(Disk { center, normal: normal.normalize(), radius }), material, emission)
+    }
+
+    /// Adds a triangle mesh; with emission, every triangle becomes a light.
+    pub fn mesh(&mut self, mesh: Mesh, material: u32, emission: Option<Emission>) -> &mut Self {
+        let mesh_index = self.meshes.len() as u32;
+        for (i, &[a, b, c]) in mesh.indices.iter().enumerate() {
+            let (p0, p1, p2) = (mesh.positions[a as usize], mesh.positions[b as usize], mesh.positions[c as usize]);
+            let tri = Triangle { p0, e1: p1 - p0, e2: p2 - p0, mesh: mesh_index, index: i as u32 };
+            self.shape(Shape::Triangle(tri), material, emission);
+        }
+        self.meshes.push(mesh);
+        self
+    }
+
+    /// Adds a point light.
+    pub fn point_light(&mut self, position: Vec3, intensity: Spectrum) -> &mut Self {
+        self.lights.push(Light::Point(PointLight { position, intensity }));
+        self
+    }
+
+    /// Validates and builds the scene (this builds the BVH).
+    pub fn build(self, camera: Camera, spp: u32) -> Result<Scene, SceneError> {
+        let err = |m: String| SceneError::new(self.name.clone(), None, m);
+        for (i, p) in self.prims.iter().enumerate() {
+            let b = p.shape.bounds();
+            if !(b.min.is_finite() && b.max.is_finite()) || p.shape.area().is_nan() {
+                return Err(err(format!("shape {i} is degenerate or not finite: {:?}", p.shape)));
+            }
+            if p.material as usize >= self.materials.len() {
+                return Err(err(format!("shape {i} uses material {} of {}", p.material, self.materials.len())));
+            }
+        }
+        let geometry = Geometry::new(self.prims, self.meshes);
+        Ok(Scene { name: self.name, camera, geometry, materials: self.materials, lights: self.lights, spp })
+    }
+}

@@ -1,0 +1,39 @@
+//! Scenes: what to render (camera, geometry, materials, lights) and where scenes come
+//! from (built-in builders; scene files later). `Scene` is validated when built.
+
+pub mod builder;
+pub mod builtin;
+mod error;
+
+pub use builder::SceneBuilder;
+pub use error::SceneError;
+
+use crate::bsdf::Material;
+use crate::geometry::Geometry;
+use crate::light::Light;
+use crate::render::camera::Camera;
+
+/// A scene ready to render.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// Name shown in reports (`builtin:NAME` or the file path).
+    pub name: String,
+    /// The camera, with the scene's default resolution.
+    pub camera: Camera,
+    /// All surfaces.
+    pub geometry: Geometry,
+    /// Materials, indexed by primitives.
+    pub materials: Vec<Material>,
+    /// Lights, indexed by primitives that emit.
+    pub lights: Vec<Light>,
+    /// Default samples per pixel.
+    pub spp: u32,
+}
+
+/// Loads `builtin:NAME` (the only source until scene files land).
+pub fn load(spec: &str) -> Result<Scene, SceneError> {
+    match spec.strip_prefix("builtin:") {
+        Some(name) => builtin::build(name),
+        None => Err(SceneError::new(spec, None, "scene files are not supported yet; use builtin:NAME")),
+    }
+}
