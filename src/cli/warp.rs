@@ -1,0 +1,1 @@
+//! `lightlab warp`.
