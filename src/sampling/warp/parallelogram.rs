@@ -52,9 +52,13 @@ pub fn parallelogram_to_square(a: Vec3, b: Vec3, d: Vec3, x: Vec3) -> Vec2 {
     plane_coordinates(a, b - a, d - a, x).unwrap_or(Vec2::ZERO)
 }
 
+/// Rounding slack on the support's edges, in plane coordinates: samples on an edge
+/// (α or β exactly 0 or 1) must not get a zero pdf after a round trip through 3D.
+pub(crate) const EDGE_SLACK: f32 = 1e-5;
+
 #[inline]
 fn in_unit_square(st: Vec2) -> bool {
-    st.cmpge(Vec2::ZERO).all() && st.cmple(Vec2::ONE).all()
+    st.cmpge(Vec2::splat(-EDGE_SLACK)).all() && st.cmple(Vec2::splat(1.0 + EDGE_SLACK)).all()
 }
 
 /// Whether `x` is within 10⁻⁴·(edge length) of the plane point with coordinates `st`.

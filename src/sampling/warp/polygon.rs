@@ -109,7 +109,11 @@ impl Polygon {
     pub fn pdf(&self, x: Vec3) -> f32 {
         let size = (self.bounds.1 - self.bounds.0).max_element();
         let height = (x - self.origin).dot(self.frame.n).abs();
-        if height <= 1e-4 * size && contains(&self.planar, to_plane(&self.frame, self.origin, x)) {
+        let p = to_plane(&self.frame, self.origin, x);
+        // Points on the outline (up to rounding) belong to the closed polygon.
+        if height <= 1e-4 * size
+            && (contains(&self.planar, p) || distance_to_outline(&self.planar, p) <= 1e-5 * size)
+        {
             self.uniform_pdf()
         } else {
             0.0
@@ -162,6 +166,19 @@ impl Polygon {
     fn plane_point(&self, p: Vec2) -> Vec3 {
         self.origin + p.x * self.frame.s + p.y * self.frame.t
     }
+}
+
+/// Distance from `p` to the nearest edge of the closed outline.
+fn distance_to_outline(vertices: &[Vec2], p: Vec2) -> f32 {
+    let n = vertices.len();
+    (0..n)
+        .map(|i| {
+            let (a, b) = (vertices[i], vertices[(i + 1) % n]);
+            let t = ((p - a).dot(b - a) / (b - a).length_squared().max(f32::MIN_POSITIVE))
+                .clamp(0.0, 1.0);
+            (a + t * (b - a) - p).length()
+        })
+        .fold(f32::INFINITY, f32::min)
 }
 
 fn to_plane(frame: &Frame, origin: Vec3, x: Vec3) -> Vec2 {

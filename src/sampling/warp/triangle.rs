@@ -7,7 +7,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::parallelogram::{on_plane, plane_coordinates};
+use super::parallelogram::{EDGE_SLACK, on_plane, plane_coordinates};
 use crate::sampling::Uniform;
 
 /// Uniform barycentrics by rejection: draw (α, β) in the square until α + β < 1
@@ -92,11 +92,14 @@ pub fn sample_triangle(p0: Vec3, p1: Vec3, p2: Vec3, b: Vec2) -> Option<(Vec3, f
 pub fn triangle_pdf(p0: Vec3, p1: Vec3, p2: Vec3, x: Vec3) -> f32 {
     let (e1, e2) = (p1 - p0, p2 - p0);
     match plane_coordinates(p0, e1, e2, x) {
-        Some(b) if triangle_barycentric_pdf(b) > 0.0 && on_plane(p0, e1, e2, b, x) => {
-            1.0 / triangle_area(p0, p1, p2)
-        }
+        Some(b) if on_triangle(b) && on_plane(p0, e1, e2, b, x) => 1.0 / triangle_area(p0, p1, p2),
         _ => 0.0,
     }
+}
+
+/// Whether barycentrics lie on the closed reference triangle, with rounding slack.
+fn on_triangle(b: Vec2) -> bool {
+    b.x >= -EDGE_SLACK && b.y >= -EDGE_SLACK && b.x + b.y <= 1.0 + EDGE_SLACK
 }
 
 /// The barycentrics (b1, b2) of `x` projected onto the triangle's plane (the inverse of
