@@ -4,11 +4,15 @@
 //! | module | holds |
 //! |---|---|
 //! | [`math`] | frames, RGB spectra, small numerics (vectors come from `glam`) |
-//! | [`sampling`] | warps, tabulated distributions, samplers and random streams |
+//! | [`sampling`] | warps, tabulated distributions, samplers, random streams, chi-square tests |
 //! | [`geometry`] | rays, boxes, shapes, hit records and the BVH |
+//! | [`lab`] | experiments: variance tables, warp plots |
+//! | [`cli`] | one file per subcommand |
 #![warn(missing_docs)]
 
+pub mod cli;
 pub mod geometry;
+pub mod lab;
 pub mod math;
 pub mod sampling;
 pub mod bsdf;

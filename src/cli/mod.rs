@@ -4,6 +4,7 @@ mod args;
 mod diff;
 mod render;
 mod scenes;
+pub mod warp;
 
 use clap::{Parser, Subcommand};
 
@@ -44,6 +45,8 @@ enum Command {
     Diff(diff::DiffArgs),
     /// List the built-in scenes.
     Scenes,
+    /// Draw a named warp's samples beside its histograms and run its chi-square test.
+    Warp(warp::WarpArgs),
 }
 
 /// Runs the CLI on the process arguments and returns the exit code.
@@ -59,6 +62,7 @@ pub fn main() -> i32 {
         Command::Render(a) => render::run(&a),
         Command::Diff(a) => diff::run(&a),
         Command::Scenes => scenes::run(),
+        Command::Warp(a) => warp::run(&a).map_err(CliError::input),
     };
     match result {
         Ok(()) => 0,

@@ -35,5 +35,9 @@ impl Ray {
 pub fn offset_origin(p: Vec3, ng: Vec3, w: Vec3) -> Vec3 {
     let scale = 1e-4 * (1.0 + p.abs().max_element());
     let offset = ng * scale;
-    if w.dot(ng) >= 0.0 { p + offset } else { p - offset }
+    if w.dot(ng) >= 0.0 {
+        p + offset
+    } else {
+        p - offset
+    }
 }

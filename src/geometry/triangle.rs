@@ -19,7 +19,13 @@ pub struct TriangleHit {
 /// (Möller & Trumbore 1997, "Fast, Minimum Storage Ray/Triangle Intersection").
 /// Both sides count.
 #[inline(always)]
-pub fn intersect_triangle(ray: &Ray, p0: Vec3, e1: Vec3, e2: Vec3, t_max: f32) -> Option<TriangleHit> {
+pub fn intersect_triangle(
+    ray: &Ray,
+    p0: Vec3,
+    e1: Vec3,
+    e2: Vec3,
+    t_max: f32,
+) -> Option<TriangleHit> {
     let p = ray.d.cross(e2);
     let det = e1.dot(p);
     if det == 0.0 || !det.is_finite() {
@@ -37,7 +43,11 @@ pub fn intersect_triangle(ray: &Ray, p0: Vec3, e1: Vec3, e2: Vec3, t_max: f32) -
         return None;
     }
     let t = e2.dot(q) * inv_det;
-    if t > 0.0 && t < t_max { Some(TriangleHit { t, b1, b2 }) } else { None }
+    if t > 0.0 && t < t_max {
+        Some(TriangleHit { t, b1, b2 })
+    } else {
+        None
+    }
 }
 
 #[cfg(test)]
@@ -50,8 +60,18 @@ mod tests {
         let down = Vec3::new(0.0, 0.0, -1.0);
         let hit = intersect_triangle(&Ray::new(Vec3::new(0.2, 0.3, 1.0), down), p0, e1, e2, 10.0);
         let hit = hit.expect("hit");
-        assert!((hit.t - 1.0).abs() < 1e-6 && (hit.b1 - 0.2).abs() < 1e-6 && (hit.b2 - 0.3).abs() < 1e-6);
-        assert!(intersect_triangle(&Ray::new(Vec3::new(0.8, 0.8, 1.0), down), p0, e1, e2, 10.0).is_none());
-        assert!(intersect_triangle(&Ray::new(Vec3::new(0.2, 0.3, 1.0), down), p0, e1, e2, 0.5).is_none());
+        assert!(
+            (hit.t - 1.0).abs() < 1e-6
+                && (hit.b1 - 0.2).abs() < 1e-6
+                && (hit.b2 - 0.3).abs() < 1e-6
+        );
+        assert!(
+            intersect_triangle(&Ray::new(Vec3::new(0.8, 0.8, 1.0), down), p0, e1, e2, 10.0)
+                .is_none()
+        );
+        assert!(
+            intersect_triangle(&Ray::new(Vec3::new(0.2, 0.3, 1.0), down), p0, e1, e2, 0.5)
+                .is_none()
+        );
     }
 }

@@ -1,6 +1,11 @@
 //! Sampling: warps from the unit square, tabulated distributions, MIS weights and the
-//! per-sample random streams. Knows nothing of scenes.
+//! per-sample random streams, plus the chi-square machinery that checks every sampler
+//! against its pdf and the registry of named warps that tests and the CLI share.
+//! Knows nothing of scenes.
 
+pub mod chi2;
+pub mod distribution;
+pub mod registry;
 pub mod rng;
 pub mod sampler;
 pub mod warp;

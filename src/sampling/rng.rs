@@ -33,7 +33,9 @@ pub struct Rng32 {
 impl Rng32 {
     /// A stream selected by `key`: state and stream increment both derive from it.
     pub fn new(key: u64) -> Rng32 {
-        Rng32 { pcg: Pcg32::new(mix64(key), mix64(key ^ 0xda3e_39cb_94b9_5bdb)) }
+        Rng32 {
+            pcg: Pcg32::new(mix64(key), mix64(key ^ 0xda3e_39cb_94b9_5bdb)),
+        }
     }
 
     /// A uniform 32-bit integer.

@@ -44,8 +44,11 @@ pub enum SamplerKind {
 
 impl SamplerKind {
     /// Every sampler, in the order the CLI lists them.
-    pub const ALL: [SamplerKind; 3] =
-        [SamplerKind::Independent, SamplerKind::Stratified, SamplerKind::Sobol];
+    pub const ALL: [SamplerKind; 3] = [
+        SamplerKind::Independent,
+        SamplerKind::Stratified,
+        SamplerKind::Sobol,
+    ];
 
     /// The CLI name.
     pub fn name(self) -> &'static str {
@@ -66,10 +69,13 @@ impl fmt::Display for SamplerKind {
 impl FromStr for SamplerKind {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
-        SamplerKind::ALL.into_iter().find(|k| k.name() == s).ok_or_else(|| {
-            let known: Vec<_> = SamplerKind::ALL.iter().map(|k| k.name()).collect();
-            format!("unknown sampler \"{s}\" (known: {})", known.join(", "))
-        })
+        SamplerKind::ALL
+            .into_iter()
+            .find(|k| k.name() == s)
+            .ok_or_else(|| {
+                let known: Vec<_> = SamplerKind::ALL.iter().map(|k| k.name()).collect();
+                format!("unknown sampler \"{s}\" (known: {})", known.join(", "))
+            })
     }
 }
 

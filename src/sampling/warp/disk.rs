@@ -26,7 +26,11 @@ pub fn uniform_disk_polar_to_square(p: Vec2) -> Vec2 {
 /// Density of every uniform disk warp: 1/π per unit area inside the disk, else 0.
 #[inline]
 pub fn uniform_disk_pdf(p: Vec2) -> f32 {
-    if p.length_squared() <= 1.0 { INV_PI } else { 0.0 }
+    if p.length_squared() <= 1.0 {
+        INV_PI
+    } else {
+        0.0
+    }
 }
 
 /// Uniform point on the unit disk by the concentric map (Shirley & Chiu 1997): squares
@@ -86,12 +90,19 @@ mod tests {
 
     #[test]
     fn disk_inverses_round_trip() {
-        for u in [Vec2::new(0.3, 0.7), Vec2::new(0.9, 0.1), Vec2::new(0.6, 0.55)] {
+        for u in [
+            Vec2::new(0.3, 0.7),
+            Vec2::new(0.9, 0.1),
+            Vec2::new(0.6, 0.55),
+        ] {
             let p = square_to_uniform_disk_polar(u);
             assert!((uniform_disk_polar_to_square(p) - u).length() < 1e-4);
             let p = square_to_uniform_disk_concentric(u);
             assert!(p.length() <= 1.0 + 1e-6);
-            assert!((uniform_disk_concentric_to_square(p) - u).length() < 1e-4, "{u}");
+            assert!(
+                (uniform_disk_concentric_to_square(p) - u).length() < 1e-4,
+                "{u}"
+            );
         }
     }
 }

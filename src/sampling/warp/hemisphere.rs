@@ -63,13 +63,20 @@ pub fn theta_phi_hemisphere_pdf(w: Vec3) -> f32 {
         return 0.0;
     }
     let sin_theta = safe_sqrt(1.0 - w.z * w.z);
-    if sin_theta == 0.0 { f32::INFINITY } else { INV_PI * INV_PI / sin_theta }
+    if sin_theta == 0.0 {
+        f32::INFINITY
+    } else {
+        INV_PI * INV_PI / sin_theta
+    }
 }
 
 /// Inverse of [`square_to_theta_phi_hemisphere`].
 #[inline]
 pub fn theta_phi_hemisphere_to_square(w: Vec3) -> Vec2 {
-    Vec2::new(w.z.clamp(-1.0, 1.0).acos() / (0.5 * PI), phi_of(w) / (2.0 * PI))
+    Vec2::new(
+        w.z.clamp(-1.0, 1.0).acos() / (0.5 * PI),
+        phi_of(w) / (2.0 * PI),
+    )
 }
 
 /// Cosine-weighted direction by Malley's method: a uniform point (x, y) on the unit disk
@@ -119,7 +126,11 @@ mod tests {
 
     #[test]
     fn inverses_round_trip() {
-        for u in [Vec2::new(0.3, 0.7), Vec2::new(0.9, 0.1), Vec2::new(0.05, 0.6)] {
+        for u in [
+            Vec2::new(0.3, 0.7),
+            Vec2::new(0.9, 0.1),
+            Vec2::new(0.05, 0.6),
+        ] {
             let (w, _) = square_to_uniform_hemisphere(u);
             assert!((uniform_hemisphere_to_square(w) - u).length() < 1e-4);
             let (w, _) = square_to_cosine_hemisphere(u);
@@ -131,8 +142,16 @@ mod tests {
 
     #[test]
     fn edges_are_finite() {
-        for u in [Vec2::ZERO, Vec2::ONE, Vec2::new(1.0, 0.0), Vec2::new(0.0, 1.0)] {
-            for (w, pdf) in [square_to_uniform_hemisphere(u), square_to_cosine_hemisphere(u)] {
+        for u in [
+            Vec2::ZERO,
+            Vec2::ONE,
+            Vec2::new(1.0, 0.0),
+            Vec2::new(0.0, 1.0),
+        ] {
+            for (w, pdf) in [
+                square_to_uniform_hemisphere(u),
+                square_to_cosine_hemisphere(u),
+            ] {
                 assert!(w.is_finite() && pdf.is_finite() && w.z >= 0.0);
             }
         }

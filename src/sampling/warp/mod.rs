@@ -4,14 +4,31 @@
 //! pdf function, so each formula exists once.
 //!
 //! Rejection samplers take a [`Uniform`](crate::sampling::Uniform) source because they
-//! consume a variable number of random numbers.
+//! consume a variable number of random numbers. Shapes seen from a shading point
+//! ([`SphericalTriangle`], [`SphericalRectangle`]) and polygons ([`Polygon`]) are small
+//! structs built once per query, since they precompute angles or a triangulation.
 
+pub mod cone;
 pub mod disk;
+pub mod ear_clipping;
 pub mod hemisphere;
+pub mod parallelogram;
 pub mod phong;
+pub mod polygon;
 pub mod sphere;
+pub mod spherical_rectangle;
+pub mod spherical_triangle;
+pub mod triangle;
+pub mod xi_squared;
 
+pub use cone::*;
 pub use disk::*;
 pub use hemisphere::*;
+pub use parallelogram::*;
 pub use phong::*;
+pub use polygon::*;
 pub use sphere::*;
+pub use spherical_rectangle::*;
+pub use spherical_triangle::*;
+pub use triangle::*;
+pub use xi_squared::*;

@@ -71,7 +71,11 @@ mod tests {
 
     #[test]
     fn sphere_round_trips_and_edges_are_finite() {
-        for u in [Vec2::new(0.3, 0.7), Vec2::new(0.9, 0.1), Vec2::new(0.5, 0.999)] {
+        for u in [
+            Vec2::new(0.3, 0.7),
+            Vec2::new(0.9, 0.1),
+            Vec2::new(0.5, 0.999),
+        ] {
             let (w, _) = square_to_uniform_sphere(u);
             assert!((uniform_sphere_to_square(w) - u).length() < 1e-4);
         }
