@@ -69,8 +69,10 @@ pub struct BenchRays {
     /// Camera rays in scanline order, one jittered ray per pixel of a square image whose
     /// field of view frames the mesh with a margin (some rays miss).
     pub primary: Vec<Ray>,
-    /// Unit-direction rays from just above one random surface point toward another, with
+    /// Unit-direction rays from just above a surface point toward a random other one, with
     /// t_max stopping just short of the target: the shadow rays of direct illumination.
+    /// Origins follow a scanline sweep of the surface, so neighbouring rays start close
+    /// together as they do in a renderer.
     pub shadow: Vec<(Ray, f32)>,
 }
 
@@ -95,13 +97,21 @@ pub fn bench_rays(n: usize, seed: u64) -> BenchRays {
             Ray::new(eye, (forward + s * right + t * up).normalize())
         })
         .collect();
-    let mut surface_point = || {
-        let w = square_to_uniform_sphere(glam::Vec2::new(rng.next_f32(), rng.next_f32())).0;
+    // Origins sweep the surface in scanline order over a width × width grid of the sphere
+    // parameter square, as a renderer's shading points follow its pixels; targets are
+    // independent random points, as light samples are.
+    let surface_point = |u: glam::Vec2| {
+        let w = square_to_uniform_sphere(u).0;
         w * bench_radius(w)
     };
     let shadow = (0..n)
-        .map(|_| {
-            let (from, to) = (surface_point(), surface_point());
+        .map(|cell| {
+            let (x, y) = (
+                (cell % width) as f32 + rng.next_f32(),
+                (cell / width) as f32 + rng.next_f32(),
+            );
+            let from = surface_point(glam::Vec2::new(x, y) / width as f32);
+            let to = surface_point(glam::Vec2::new(rng.next_f32(), rng.next_f32()));
             // Lift the origin along the radial direction, roughly the normal.
             let o = from * 1.001;
             let distance = (to - o).length();

@@ -101,13 +101,11 @@ pub fn any_hit<F: FnMut(u32, &Ray, f32) -> bool>(
                 }
             } else {
                 let node = &nodes[current.0 as usize];
-                let entry = node.intersect(&data, t_max);
-                for (&t, &child) in entry.iter().zip(&node.children) {
-                    if t < f32::INFINITY {
-                        stack[len] = (child, t);
-                        len += 1;
-                    }
-                }
+                // Nearest first here too: a shadow ray is usually blocked near one end,
+                // and visiting near boxes first finds the blocker sooner.
+                let (hits, count) = sorted_hits(&node.intersect(&data, t_max), &node.children);
+                stack[len..len + count].copy_from_slice(&hits[..count]);
+                len += count;
             }
         }
         false
