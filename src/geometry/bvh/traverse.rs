@@ -51,12 +51,16 @@ pub fn closest_hit<F: FnMut(u32, &Ray, f32) -> Option<f32>>(
                 }
             } else {
                 let node = &nodes[current.0 as usize];
-                let (hits, count) = sorted_hits(&node.intersect(&data, t_closest), &node.children);
-                if count > 0 {
-                    // Push the farther children, continue with the nearest.
-                    stack[len..len + count - 1].copy_from_slice(&hits[..count - 1]);
-                    len += count - 1;
-                    current = hits[count - 1].0;
+                let hits = push_sorted_hits(
+                    &node.intersect(&data, t_closest),
+                    &node.children,
+                    stack,
+                    len,
+                );
+                if hits > 0 {
+                    // Continue with the nearest child; the farther ones stay pushed.
+                    len += hits - 1;
+                    current = stack[len].0;
                     continue;
                 }
             }
@@ -103,34 +107,38 @@ pub fn any_hit<F: FnMut(u32, &Ray, f32) -> bool>(
                 let node = &nodes[current.0 as usize];
                 // Nearest first here too: a shadow ray is usually blocked near one end,
                 // and visiting near boxes first finds the blocker sooner.
-                let (hits, count) = sorted_hits(&node.intersect(&data, t_max), &node.children);
-                stack[len..len + count].copy_from_slice(&hits[..count]);
-                len += count;
+                len += push_sorted_hits(&node.intersect(&data, t_max), &node.children, stack, len);
             }
         }
         false
     })
 }
 
-/// The hit lanes of a node as (child, entry distance), farthest first, and their count.
+/// Pushes the hit lanes of a node as (child, entry distance) onto `stack` at `len`,
+/// sorted so the nearest is on top, and returns how many were pushed. Writing straight
+/// into the stack (rather than sorting a local array and copying it) avoids a store
+/// forwarding stall that cost about a fifth of the traversal time.
 #[inline(always)]
-fn sorted_hits(entry: &[f32; WIDTH], children: &[ChildRef; WIDTH]) -> ([Entry; WIDTH], usize) {
-    let mut hits = [(ChildRef(0), 0.0f32); WIDTH];
-    let mut count = 0;
-    for lane in 0..WIDTH {
-        let t = entry[lane];
+fn push_sorted_hits(
+    entry: &[f32; WIDTH],
+    children: &[ChildRef; WIDTH],
+    stack: &mut [Entry],
+    len: usize,
+) -> usize {
+    let mut top = len;
+    for (&t, &child) in entry.iter().zip(children) {
         if t < f32::INFINITY {
-            // Insertion sort, descending by entry distance.
-            let mut at = count;
-            while at > 0 && hits[at - 1].1 < t {
-                hits[at] = hits[at - 1];
+            // Insertion sort, descending by entry distance from the bottom up.
+            let mut at = top;
+            while at > len && stack[at - 1].1 < t {
+                stack[at] = stack[at - 1];
                 at -= 1;
             }
-            hits[at] = (children[lane], t);
-            count += 1;
+            stack[at] = (child, t);
+            top += 1;
         }
     }
-    (hits, count)
+    top - len
 }
 
 /// SAH cost of the wide tree; see [`super::Bvh::sah_cost`].
@@ -173,14 +181,13 @@ mod tests {
     use super::*;
 
     #[test]
-    fn hits_are_sorted_farthest_first_and_misses_dropped() {
+    fn hits_are_pushed_nearest_on_top_and_misses_dropped() {
         let children = [ChildRef(0), ChildRef(1), ChildRef(2), ChildRef(3)];
-        let (hits, count) = sorted_hits(&[2.0, f32::INFINITY, 0.5, 3.0], &children);
+        let mut stack = [(ChildRef(9), 9.0); 6];
+        let count = push_sorted_hits(&[2.0, f32::INFINITY, 0.5, 3.0], &children, &mut stack, 1);
         assert_eq!(count, 3);
-        assert_eq!(
-            hits[..3].iter().map(|h| h.0.0).collect::<Vec<_>>(),
-            [3, 0, 2]
-        );
+        let order: Vec<u32> = stack[..4].iter().map(|h| h.0.0).collect();
+        assert_eq!(order, [9, 3, 0, 2]);
     }
 
     #[test]
