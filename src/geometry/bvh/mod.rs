@@ -4,7 +4,7 @@
 //!
 //! Build: binary binned SAH (Wald 2007), collapsed into 4-wide nodes whose child boxes
 //! are stored structure-of-arrays (Wald et al. 2008; Embree's BVH4), see [`node`].
-//! Queries: ordered closest-hit and unordered any-hit traversal with a fixed-size stack
+//! Queries: nearest-first closest-hit and any-hit traversal with a fixed-size stack
 //! and the robust slab test of Ize 2013.
 //!
 //! The module leaves shading data (normals, uv) and the primitives themselves to the

