@@ -8,12 +8,15 @@ examples/bvh_compare.rs, so lightlab's Mrays/s can be quoted as a ratio against 
 Reads DIR/NAME.{vertices.f32, indices.u32, primary.f32, shadow.f32} (raw little-endian;
 rays are 7 floats: origin, direction, t_max) for NAME in 100k and 1M. Reports build time,
 closest-hit Mrays/s on the primary rays and occlusion Mrays/s on the shadow rays (median of
-5 runs; `EmbreeScene.run` loops over single rays in native code on one thread), and how many
-rays hit, to compare with the counts bvh_compare prints.
+5 runs) on one thread and on all threads, and how many rays hit, to compare with the counts
+bvh_compare prints. `EmbreeScene.run` loops over single rays (rtcIntersect1/rtcOccluded1) in
+native code without the GIL, so all threads run Python threads over equal shares of the rays.
 """
 
+import os
 import sys
 import time
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import numpy as np
@@ -31,14 +34,28 @@ def median_seconds(f):
     return sorted(times)[RUNS // 2]
 
 
+def mrays(scene, origins, directions, query, dists, threads):
+    """Mrays/s of `query` over the rays on `threads` threads (median of RUNS)."""
+    shares = np.array_split(np.arange(len(origins)), threads)
+
+    def trace(share):
+        kwargs = {} if dists is None else {"dists": dists[share[0] : share[-1] + 1]}
+        scene.run(origins[share[0] : share[-1] + 1], directions[share[0] : share[-1] + 1], query=query, **kwargs)
+
+    with ThreadPoolExecutor(threads) as pool:
+        seconds = median_seconds(lambda: list(pool.map(trace, shares)))
+    return len(origins) / seconds / 1e6
+
+
 def load_rays(path):
     rays = np.fromfile(path, dtype="<f4").reshape(-1, 7)
     return np.ascontiguousarray(rays[:, 0:3]), np.ascontiguousarray(rays[:, 3:6]), np.ascontiguousarray(rays[:, 6])
 
 
 def main(directory):
-    print("| mesh | BVH | build s | closest Mrays/s 1 thr | any-hit Mrays/s 1 thr | primary hits | shadow hits |")
-    print("|---|---|---|---|---|---|---|")
+    n = os.cpu_count() or 1
+    print(f"| mesh | BVH | build s | closest 1 thr | closest {n} thr | any-hit 1 thr | any-hit {n} thr | primary hits | shadow hits |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for name in ["100k", "1M"]:
         base = Path(directory)
         vertices = np.fromfile(base / f"{name}.vertices.f32", dtype="<f4").reshape(-1, 3)
@@ -53,13 +70,13 @@ def main(directory):
         scene.run(p_o[:1], p_d[:1], query="INTERSECT")
         build = time.perf_counter() - start
 
-        closest = median_seconds(lambda: scene.run(p_o, p_d, query="INTERSECT"))
-        occluded = median_seconds(lambda: scene.run(s_o, s_d, dists=s_t, query="OCCLUDED"))
+        closest = [mrays(scene, p_o, p_d, "INTERSECT", None, t) for t in (1, n)]
+        occluded = [mrays(scene, s_o, s_d, "OCCLUDED", s_t, t) for t in (1, n)]
         primary_hits = int((scene.run(p_o, p_d, query="INTERSECT") >= 0).sum())
         shadow_hits = int((scene.run(s_o, s_d, dists=s_t, query="OCCLUDED") >= 0).sum())
         print(
             f"| {name} ({len(indices)} tris) | Embree 4 (embreex) | {build:.3f} | "
-            f"{len(p_o) / closest / 1e6:.2f} | {len(s_o) / occluded / 1e6:.2f} | {primary_hits} | {shadow_hits} |"
+            f"{closest[0]:.2f} | {closest[1]:.2f} | {occluded[0]:.2f} | {occluded[1]:.2f} | {primary_hits} | {shadow_hits} |"
         )
 
 
