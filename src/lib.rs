@@ -5,20 +5,27 @@
 //! |---|---|
 //! | [`math`] | frames, RGB spectra, small numerics (vectors come from `glam`) |
 //! | [`sampling`] | warps, tabulated distributions, samplers, random streams, chi-square tests |
-//! | [`geometry`] | rays, boxes, shapes, hit records and the BVH |
+//! | [`geometry`] | rays, boxes, shapes, meshes, hit records and the wide BVH |
+//! | [`bsdf`] | the `Bsdf` trait (uniform default sampling), Lambertian, modified Phong |
+//! | [`light`] | area and point lights, area/solid-angle conversion, light selection |
+//! | [`integrator`] | direct-lighting estimators (hemisphere, rejection, cosine, bsdf, light) |
+//! | [`render`] | camera, render settings, parallel tile loop |
+//! | [`image`] | film (Welford statistics), EXR/PNG/PFM io, error metrics |
+//! | [`scene`] | scene builder, built-in scenes, located errors |
+//! | [`lab`] | experiments (the lecture's 1D variance demo, warp plots) |
+//! | [`cli`] | the command line, one file per subcommand |
 //! | [`lab`] | experiments: variance tables, warp plots |
 //! | [`cli`] | one file per subcommand |
 #![warn(missing_docs)]
 
-pub mod cli;
-pub mod geometry;
-pub mod lab;
-pub mod math;
-pub mod sampling;
 pub mod bsdf;
 pub mod cli;
+pub mod geometry;
 pub mod image;
 pub mod integrator;
+pub mod lab;
 pub mod light;
+pub mod math;
 pub mod render;
+pub mod sampling;
 pub mod scene;

@@ -29,11 +29,20 @@ impl Bsdf for Diffuse {
             return None;
         }
         let (w_in, pdf) = square_to_cosine_hemisphere(u);
-        (pdf > 0.0).then(|| BsdfSample { w_in, f: self.eval(w_in, w_out), pdf, delta: false })
+        (pdf > 0.0).then(|| BsdfSample {
+            w_in,
+            f: self.eval(w_in, w_out),
+            pdf,
+            delta: false,
+        })
     }
 
     #[inline]
     fn pdf(&self, w_in: Vec3, w_out: Vec3) -> f32 {
-        if w_out.z <= 0.0 { 0.0 } else { cosine_hemisphere_pdf(w_in) }
+        if w_out.z <= 0.0 {
+            0.0
+        } else {
+            cosine_hemisphere_pdf(w_in)
+        }
     }
 }

@@ -42,12 +42,21 @@ pub trait Bsdf {
             return None;
         }
         let (w_in, pdf) = square_to_uniform_hemisphere(u);
-        Some(BsdfSample { w_in, f: self.eval(w_in, w_out), pdf, delta: false })
+        Some(BsdfSample {
+            w_in,
+            f: self.eval(w_in, w_out),
+            pdf,
+            delta: false,
+        })
     }
 
     /// Density of `sample` choosing `w_in` given `w_out`, per steradian.
     fn pdf(&self, w_in: Vec3, w_out: Vec3) -> f32 {
-        if w_out.z <= 0.0 { 0.0 } else { uniform_hemisphere_pdf(w_in) }
+        if w_out.z <= 0.0 {
+            0.0
+        } else {
+            uniform_hemisphere_pdf(w_in)
+        }
     }
 
     /// True when every lobe is a Dirac delta (light sampling cannot help).

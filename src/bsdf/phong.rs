@@ -70,7 +70,12 @@ impl Bsdf for Phong {
             return None;
         }
         let pdf = self.pdf(w_in, w_out);
-        (pdf > 0.0).then(|| BsdfSample { w_in, f: self.eval(w_in, w_out), pdf, delta: false })
+        (pdf > 0.0).then(|| BsdfSample {
+            w_in,
+            f: self.eval(w_in, w_out),
+            pdf,
+            delta: false,
+        })
     }
 
     /// Mixture density (1 − pₛ)·cos θ/π + pₛ·(n + 1)/(2π)·cosⁿα, per steradian, over the
@@ -92,7 +97,11 @@ mod tests {
 
     #[test]
     fn sample_agrees_with_eval_and_pdf() {
-        let p = Phong { kd: Spectrum::splat(0.3), ks: Spectrum::splat(0.6), exponent: 100.0 };
+        let p = Phong {
+            kd: Spectrum::splat(0.3),
+            ks: Spectrum::splat(0.6),
+            exponent: 100.0,
+        };
         let w_out = Vec3::new(0.3, 0.1, 0.9).normalize();
         for i in 0..100 {
             let u = Vec2::new((i as f32 + 0.5) / 100.0, 0.37);

@@ -80,7 +80,9 @@ impl StrategyArgs {
         if let Some((w, h)) = s.resolution
             && (w == 0 || h == 0 || w > 32768 || h > 32768)
         {
-            return Err(CliError::input(format!("image size {w}x{h} is out of range (1..=32768)")));
+            return Err(CliError::input(format!(
+                "image size {w}x{h} is out of range (1..=32768)"
+            )));
         }
         Ok(s)
     }

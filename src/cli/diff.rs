@@ -35,17 +35,36 @@ pub fn run(args: &DiffArgs) -> Result<(), CliError> {
             reference.height
         )));
     }
-    let e = compare(&img.rgb, img.variance.as_deref(), &reference.rgb, reference.variance.as_deref());
+    let e = compare(
+        &img.rgb,
+        img.variance.as_deref(),
+        &reference.rgb,
+        reference.variance.as_deref(),
+    );
     println!("mse: {:.6e}", e.mse);
     println!("relmse: {:.6e}", e.rel_mse);
     match e.bias_std_error {
-        Some(se) => println!("relative-bias: {:+.4e} ± {:.4e} (z = {:+.2})", e.relative_bias, se, e.bias_z().unwrap_or(0.0)),
-        None => println!("relative-bias: {:+.4e} (no variance in either file: no standard error)", e.relative_bias),
+        Some(se) => println!(
+            "relative-bias: {:+.4e} ± {:.4e} (z = {:+.2})",
+            e.relative_bias,
+            se,
+            e.bias_z().unwrap_or(0.0)
+        ),
+        None => println!(
+            "relative-bias: {:+.4e} (no variance in either file: no standard error)",
+            e.relative_bias
+        ),
     }
     println!("nan-pixels: {}", e.nan_pixels);
     println!("inf-pixels: {}", e.inf_pixels);
     if let Some(path) = &args.false_color {
-        write_rgb8_png(img.width, img.height, false_color(&img.rgb, &reference.rgb), path).map_err(CliError::failure)?;
+        write_rgb8_png(
+            img.width,
+            img.height,
+            false_color(&img.rgb, &reference.rgb),
+            path,
+        )
+        .map_err(CliError::failure)?;
     }
     Ok(())
 }

@@ -22,16 +22,26 @@ pub struct CliError {
 impl CliError {
     /// Bad input (exit code 2).
     pub fn input(message: impl ToString) -> CliError {
-        CliError { message: message.to_string(), code: 2 }
+        CliError {
+            message: message.to_string(),
+            code: 2,
+        }
     }
     /// A failure while working (exit code 1).
     pub fn failure(message: impl ToString) -> CliError {
-        CliError { message: message.to_string(), code: 1 }
+        CliError {
+            message: message.to_string(),
+            code: 1,
+        }
     }
 }
 
 #[derive(Parser, Debug)]
-#[command(name = "lightlab", version, about = "A renderer and laboratory for Monte Carlo direct illumination and importance sampling")]
+#[command(
+    name = "lightlab",
+    version,
+    about = "A renderer and laboratory for Monte Carlo direct illumination and importance sampling"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,

@@ -45,7 +45,9 @@ pub fn install_stop_handler() {
 /// A progress bar on stderr with an ETA; draws nothing when stderr is not a terminal.
 pub fn progress_bar(total: u64) -> ProgressBar {
     let bar = ProgressBar::new(total);
-    if let Ok(style) = ProgressStyle::with_template("{spinner} [{elapsed_precise}] {wide_bar} {percent:>3}% ETA {eta}") {
+    if let Ok(style) = ProgressStyle::with_template(
+        "{spinner} [{elapsed_precise}] {wide_bar} {percent:>3}% ETA {eta}",
+    ) {
         bar.set_style(style);
     }
     bar
@@ -65,7 +67,16 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
     let (first, last) = settings.pass.sample_range(settings.spp);
     let bar = progress_bar((last - first) as u64 * (camera.width * camera.height) as u64);
     let progress = |done: u64, _total: u64| bar.set_position(done);
-    let out = pool.install(|| render(&scene, &settings, &Control { progress: &progress, stop: &STOP }));
+    let out = pool.install(|| {
+        render(
+            &scene,
+            &settings,
+            &Control {
+                progress: &progress,
+                stop: &STOP,
+            },
+        )
+    });
     bar.finish_and_clear();
     write_film(&out.film, &args.output, args.exposure).map_err(CliError::failure)?;
     let samples = out.spp as f64 * (camera.width * camera.height) as f64;
@@ -75,17 +86,28 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
         camera.width,
         camera.height,
         out.spp,
-        if settings.pass.count > 1 { format!(" (pass {})", settings.pass) } else { String::new() },
+        if settings.pass.count > 1 {
+            format!(" (pass {})", settings.pass)
+        } else {
+            String::new()
+        },
         out.time.as_secs_f64(),
         samples / out.time.as_secs_f64().max(1e-9) / 1e6,
         settings.flags(),
         args.output.display()
     );
     if out.invalid_samples > 0 {
-        eprintln!("warning: {} samples were not finite and were scored as zero", out.invalid_samples);
+        eprintln!(
+            "warning: {} samples were not finite and were scored as zero",
+            out.invalid_samples
+        );
     }
     if out.stopped {
-        eprintln!("stopped early: the image holds {} of {} spp", out.spp, last - first);
+        eprintln!(
+            "stopped early: the image holds {} of {} spp",
+            out.spp,
+            last - first
+        );
     }
     Ok(())
 }

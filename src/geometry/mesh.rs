@@ -35,6 +35,8 @@ impl Mesh {
             return Vec2::new(b1, b2);
         }
         let [i0, i1, i2] = self.indices[index as usize];
-        (1.0 - b1 - b2) * self.uvs[i0 as usize] + b1 * self.uvs[i1 as usize] + b2 * self.uvs[i2 as usize]
+        (1.0 - b1 - b2) * self.uvs[i0 as usize]
+            + b1 * self.uvs[i1 as usize]
+            + b2 * self.uvs[i2 as usize]
     }
 }

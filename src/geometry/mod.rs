@@ -11,6 +11,7 @@ pub mod shape;
 pub mod triangle;
 
 pub use aabb::Aabb;
+pub use bvh::{Bvh, TriangleSet};
 pub use hit::{NO_LIGHT, SurfaceHit};
 pub use mesh::Mesh;
 pub use ray::{Ray, offset_origin};

@@ -35,7 +35,11 @@ impl Geometry {
     pub fn new(prims: Vec<Primitive>, meshes: Vec<Mesh>) -> Geometry {
         let bounds: Vec<Aabb> = prims.iter().map(|p| p.shape.bounds()).collect();
         let bvh = Bvh::build(&bounds);
-        let prims = bvh.primitive_order().iter().map(|&i| prims[i as usize]).collect();
+        let prims = bvh
+            .primitive_order()
+            .iter()
+            .map(|&i| prims[i as usize])
+            .collect();
         Geometry { prims, meshes, bvh }
     }
 
@@ -57,16 +61,18 @@ impl Geometry {
     /// The closest hit of `ray` in (0, t_max), with its shading data.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<SurfaceHit> {
-        let (prim, t) = self
-            .bvh
-            .closest_hit(ray, t_max, |i, r, t| self.prims[i as usize].shape.intersect(r, t).map(|h| h.t))?;
+        let (prim, t) = self.bvh.closest_hit(ray, t_max, |i, r, t| {
+            self.prims[i as usize].shape.intersect(r, t).map(|h| h.t)
+        })?;
         self.surface_hit(prim, ray, t)
     }
 
     /// True when something blocks `ray` in (0, t_max).
     #[inline]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
-        self.bvh.any_hit(ray, t_max, |i, r, t| self.prims[i as usize].shape.intersect(r, t).is_some())
+        self.bvh.any_hit(ray, t_max, |i, r, t| {
+            self.prims[i as usize].shape.intersect(r, t).is_some()
+        })
     }
 
     /// True when the segment from surface point `x` (geometric normal `nx`) to surface

@@ -42,12 +42,20 @@ impl PixelStats {
 
     /// Unbiased sample variance of one sample (zero with fewer than two samples).
     pub fn sample_variance(&self) -> Spectrum {
-        if self.count < 2 { Spectrum::ZERO } else { self.m2 / (self.count - 1) as f32 }
+        if self.count < 2 {
+            Spectrum::ZERO
+        } else {
+            self.m2 / (self.count - 1) as f32
+        }
     }
 
     /// Variance of the pixel's mean: sample variance / count.
     pub fn variance_of_mean(&self) -> Spectrum {
-        if self.count < 2 { Spectrum::ZERO } else { self.sample_variance() / self.count as f32 }
+        if self.count < 2 {
+            Spectrum::ZERO
+        } else {
+            self.sample_variance() / self.count as f32
+        }
     }
 }
 
@@ -65,7 +73,11 @@ pub struct Film {
 impl Film {
     /// An empty film.
     pub fn new(width: u32, height: u32) -> Film {
-        Film { width, height, pixels: vec![PixelStats::default(); (width * height) as usize] }
+        Film {
+            width,
+            height,
+            pixels: vec![PixelStats::default(); (width * height) as usize],
+        }
     }
 
     /// Pixel (x, y).
@@ -83,7 +95,12 @@ impl Film {
         (self.width == o.width && self.height == o.height).then(|| Film {
             width: self.width,
             height: self.height,
-            pixels: self.pixels.iter().zip(&o.pixels).map(|(a, b)| a.merge(b)).collect(),
+            pixels: self
+                .pixels
+                .iter()
+                .zip(&o.pixels)
+                .map(|(a, b)| a.merge(b))
+                .collect(),
         })
     }
 }
@@ -94,12 +111,18 @@ mod tests {
 
     #[test]
     fn welford_matches_two_pass_and_merge_matches_single() {
-        let xs: Vec<f32> = (0..50).map(|i| ((i * 37 % 11) as f32).sin() * 3.0 + 1.0).collect();
+        let xs: Vec<f32> = (0..50)
+            .map(|i| ((i * 37 % 11) as f32).sin() * 3.0 + 1.0)
+            .collect();
         let mut all = PixelStats::default();
         let (mut a, mut b) = (PixelStats::default(), PixelStats::default());
         for (i, &x) in xs.iter().enumerate() {
             all.add(Spectrum::splat(x));
-            if i < 17 { a.add(Spectrum::splat(x)) } else { b.add(Spectrum::splat(x)) }
+            if i < 17 {
+                a.add(Spectrum::splat(x))
+            } else {
+                b.add(Spectrum::splat(x))
+            }
         }
         let mean = xs.iter().sum::<f32>() / xs.len() as f32;
         let var = xs.iter().map(|x| (x - mean).powi(2)).sum::<f32>() / (xs.len() - 1) as f32;

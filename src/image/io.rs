@@ -7,11 +7,11 @@
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use exr::prelude::{
-    AnyChannel, AnyChannels, AttributeValue, Encoding, FlatSamples, Image, LayerAttributes, ReadChannels,
-    ReadLayers, SmallVec, Text, WritableImage, read,
-};
 use exr::prelude::Layer;
+use exr::prelude::{
+    AnyChannel, AnyChannels, AttributeValue, Encoding, FlatSamples, Image, LayerAttributes,
+    ReadChannels, ReadLayers, SmallVec, Text, WritableImage, read,
+};
 
 use super::film::{Film, PixelStats};
 use crate::math::Spectrum;
@@ -27,7 +27,10 @@ pub struct ImageError {
 }
 
 fn image_error(path: &Path, message: impl ToString) -> ImageError {
-    ImageError { path: path.to_path_buf(), message: message.to_string() }
+    ImageError {
+        path: path.to_path_buf(),
+        message: message.to_string(),
+    }
 }
 
 /// An image read from a file: RGB means, and per-pixel variance of the mean and spp
@@ -53,18 +56,33 @@ pub fn write_film(film: &Film, path: &Path, exposure: f32) -> Result<(), ImageEr
         "exr" => write_exr(film, path),
         "png" => write_png(film.width, film.height, &film.means(), path, exposure),
         "pfm" => write_pfm(film.width, film.height, &film.means(), path),
-        other => Err(image_error(path, format!("unknown image format \".{other}\" (known: .exr, .png, .pfm)"))),
+        other => Err(image_error(
+            path,
+            format!("unknown image format \".{other}\" (known: .exr, .png, .pfm)"),
+        )),
     }
 }
 
 fn extension(path: &Path) -> String {
-    path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase()
+    path.extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase()
 }
 
 /// Writes through a temporary sibling file renamed into place.
-fn write_atomically(path: &Path, write: impl FnOnce(&Path) -> Result<(), String>) -> Result<(), ImageError> {
-    let file_name = path.file_name().ok_or_else(|| image_error(path, "not a file path"))?;
-    let tmp = path.with_file_name(format!(".{}.tmp-{}", file_name.to_string_lossy(), std::process::id()));
+fn write_atomically(
+    path: &Path,
+    write: impl FnOnce(&Path) -> Result<(), String>,
+) -> Result<(), ImageError> {
+    let file_name = path
+        .file_name()
+        .ok_or_else(|| image_error(path, "not a file path"))?;
+    let tmp = path.with_file_name(format!(
+        ".{}.tmp-{}",
+        file_name.to_string_lossy(),
+        std::process::id()
+    ));
     if let Err(e) = write(&tmp) {
         let _ = fs::remove_file(&tmp);
         return Err(image_error(path, e));
@@ -78,35 +96,62 @@ fn write_atomically(path: &Path, write: impl FnOnce(&Path) -> Result<(), String>
 /// sRGB transfer function (IEC 61966-2-1) of a linear value in [0, 1].
 #[inline]
 pub fn linear_to_srgb(x: f32) -> f32 {
-    if x <= 0.003_130_8 { 12.92 * x } else { 1.055 * x.powf(1.0 / 2.4) - 0.055 }
+    if x <= 0.003_130_8 {
+        12.92 * x
+    } else {
+        1.055 * x.powf(1.0 / 2.4) - 0.055
+    }
 }
 
 /// Inverse sRGB transfer function.
 #[inline]
 pub fn srgb_to_linear(x: f32) -> f32 {
-    if x <= 0.040_45 { x / 12.92 } else { ((x + 0.055) / 1.055).powf(2.4) }
+    if x <= 0.040_45 {
+        x / 12.92
+    } else {
+        ((x + 0.055) / 1.055).powf(2.4)
+    }
 }
 
 /// 8-bit sRGB of a linear RGB value (non-finite values become black).
 pub fn to_srgb8(c: Spectrum, scale: f32) -> [u8; 3] {
     let q = |v: f32| {
-        let v = if v.is_finite() { (v * scale).clamp(0.0, 1.0) } else { 0.0 };
+        let v = if v.is_finite() {
+            (v * scale).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
         (linear_to_srgb(v) * 255.0 + 0.5) as u8
     };
     [q(c.x), q(c.y), q(c.z)]
 }
 
 /// Writes an sRGB PNG of linear RGB values scaled by 2^exposure.
-pub fn write_png(width: u32, height: u32, rgb: &[Spectrum], path: &Path, exposure: f32) -> Result<(), ImageError> {
+pub fn write_png(
+    width: u32,
+    height: u32,
+    rgb: &[Spectrum],
+    path: &Path,
+    exposure: f32,
+) -> Result<(), ImageError> {
     let scale = exposure.exp2();
     let bytes: Vec<u8> = rgb.iter().flat_map(|&c| to_srgb8(c, scale)).collect();
     write_rgb8_png(width, height, bytes, path)
 }
 
 /// Writes 8-bit RGB bytes as a PNG.
-pub fn write_rgb8_png(width: u32, height: u32, bytes: Vec<u8>, path: &Path) -> Result<(), ImageError> {
-    let img = image::RgbImage::from_raw(width, height, bytes).ok_or_else(|| image_error(path, "pixel count does not match the size"))?;
-    write_atomically(path, |tmp| img.save_with_format(tmp, image::ImageFormat::Png).map_err(|e| e.to_string()))
+pub fn write_rgb8_png(
+    width: u32,
+    height: u32,
+    bytes: Vec<u8>,
+    path: &Path,
+) -> Result<(), ImageError> {
+    let img = image::RgbImage::from_raw(width, height, bytes)
+        .ok_or_else(|| image_error(path, "pixel count does not match the size"))?;
+    write_atomically(path, |tmp| {
+        img.save_with_format(tmp, image::ImageFormat::Png)
+            .map_err(|e| e.to_string())
+    })
 }
 
 /// Writes a little-endian PFM (bottom row first, as the format requires).
@@ -138,10 +183,19 @@ fn write_exr(film: &Film, path: &Path) -> Result<(), ImageError> {
     let mut attributes = LayerAttributes::named("");
     attributes.software_name = Some(Text::from("lightlab"));
     let spp = film.pixels.iter().map(|p| p.count).min().unwrap_or(0);
-    attributes.other.insert(Text::from("spp"), AttributeValue::I32(spp as i32));
-    let layer = Layer::new(size, attributes, Encoding::SMALL_LOSSLESS, AnyChannels::sort(SmallVec::from_vec(channels)));
+    attributes
+        .other
+        .insert(Text::from("spp"), AttributeValue::I32(spp as i32));
+    let layer = Layer::new(
+        size,
+        attributes,
+        Encoding::SMALL_LOSSLESS,
+        AnyChannels::sort(SmallVec::from_vec(channels)),
+    );
     let image = Image::from_layer(layer);
-    write_atomically(path, |tmp| image.write().to_file(tmp).map_err(|e| e.to_string()))
+    write_atomically(path, |tmp| {
+        image.write().to_file(tmp).map_err(|e| e.to_string())
+    })
 }
 
 /// Reads an image: EXR (R, G, B, optional variance.R/G/B and spp), PFM, or PNG
@@ -151,7 +205,10 @@ pub fn read_image(path: &Path) -> Result<LoadedImage, ImageError> {
         "exr" => read_exr(path),
         "pfm" => read_pfm(path),
         "png" => read_png(path),
-        other => Err(image_error(path, format!("unknown image format \".{other}\" (known: .exr, .pfm, .png)"))),
+        other => Err(image_error(
+            path,
+            format!("unknown image format \".{other}\" (known: .exr, .pfm, .png)"),
+        )),
     }
 }
 
@@ -167,10 +224,19 @@ fn read_exr(path: &Path) -> Result<LoadedImage, ImageError> {
     let layer = &image.layer_data;
     let (w, h) = (layer.size.width(), layer.size.height());
     let find = |name: &str| {
-        layer.channel_data.list.iter().find(|c| c.name.to_string() == name).map(|c| c.sample_data.values_as_f32().collect::<Vec<f32>>())
+        layer
+            .channel_data
+            .list
+            .iter()
+            .find(|c| c.name.to_string() == name)
+            .map(|c| c.sample_data.values_as_f32().collect::<Vec<f32>>())
     };
     let zip3 = |r: Vec<f32>, g: Vec<f32>, b: Vec<f32>| -> Vec<Spectrum> {
-        r.into_iter().zip(g).zip(b).map(|((r, g), b)| Spectrum::new(r, g, b)).collect()
+        r.into_iter()
+            .zip(g)
+            .zip(b)
+            .map(|((r, g), b)| Spectrum::new(r, g, b))
+            .collect()
     };
     let (Some(r), Some(g), Some(b)) = (find("R"), find("G"), find("B")) else {
         return Err(image_error(path, "EXR has no R, G and B channels"));
@@ -179,17 +245,36 @@ fn read_exr(path: &Path) -> Result<LoadedImage, ImageError> {
         (Some(r), Some(g), Some(b)) => Some(zip3(r, g, b)),
         _ => None,
     };
-    let spp = [&layer.attributes.other, &image.attributes.other].iter().find_map(|m| match m.get(&Text::from("spp")) {
-        Some(AttributeValue::I32(v)) if *v >= 0 => Some(*v as u32),
-        _ => None,
-    });
-    Ok(LoadedImage { width: w as u32, height: h as u32, rgb: zip3(r, g, b), variance, spp })
+    let spp = [&layer.attributes.other, &image.attributes.other]
+        .iter()
+        .find_map(|m| match m.get(&Text::from("spp")) {
+            Some(AttributeValue::I32(v)) if *v >= 0 => Some(*v as u32),
+            _ => None,
+        });
+    Ok(LoadedImage {
+        width: w as u32,
+        height: h as u32,
+        rgb: zip3(r, g, b),
+        variance,
+        spp,
+    })
 }
 
 fn read_png(path: &Path) -> Result<LoadedImage, ImageError> {
-    let img = image::open(path).map_err(|e| image_error(path, e))?.to_rgb8();
-    let rgb = img.pixels().map(|p| Spectrum::from_array(p.0.map(|v| srgb_to_linear(v as f32 / 255.0)))).collect();
-    Ok(LoadedImage { width: img.width(), height: img.height(), rgb, variance: None, spp: None })
+    let img = image::open(path)
+        .map_err(|e| image_error(path, e))?
+        .to_rgb8();
+    let rgb = img
+        .pixels()
+        .map(|p| Spectrum::from_array(p.0.map(|v| srgb_to_linear(v as f32 / 255.0))))
+        .collect();
+    Ok(LoadedImage {
+        width: img.width(),
+        height: img.height(),
+        rgb,
+        variance: None,
+        spp: None,
+    })
 }
 
 fn read_pfm(path: &Path) -> Result<LoadedImage, ImageError> {
@@ -221,19 +306,40 @@ fn read_pfm(path: &Path) -> Result<LoadedImage, ImageError> {
     let h: u32 = tokens[2].parse().map_err(|_| bad("bad PFM height"))?;
     let scale: f32 = tokens[3].parse().map_err(|_| bad("bad PFM scale"))?;
     let n = (w as usize) * (h as usize) * channels;
-    let data = bytes.get(pos..pos + 4 * n).ok_or_else(|| bad("PFM data is shorter than its header says"))?;
+    let data = bytes
+        .get(pos..pos + 4 * n)
+        .ok_or_else(|| bad("PFM data is shorter than its header says"))?;
     let value = |i: usize| {
-        let b = [data[4 * i], data[4 * i + 1], data[4 * i + 2], data[4 * i + 3]];
-        if scale < 0.0 { f32::from_le_bytes(b) } else { f32::from_be_bytes(b) }
+        let b = [
+            data[4 * i],
+            data[4 * i + 1],
+            data[4 * i + 2],
+            data[4 * i + 3],
+        ];
+        if scale < 0.0 {
+            f32::from_le_bytes(b)
+        } else {
+            f32::from_be_bytes(b)
+        }
     };
     let mut rgb = vec![Spectrum::ZERO; (w * h) as usize];
     for y in 0..h as usize {
         for x in 0..w as usize {
             let i = ((h as usize - 1 - y) * w as usize + x) * channels;
-            rgb[y * w as usize + x] = if channels == 3 { Spectrum::new(value(i), value(i + 1), value(i + 2)) } else { Spectrum::splat(value(i)) };
+            rgb[y * w as usize + x] = if channels == 3 {
+                Spectrum::new(value(i), value(i + 1), value(i + 2))
+            } else {
+                Spectrum::splat(value(i))
+            };
         }
     }
-    Ok(LoadedImage { width: w, height: h, rgb, variance: None, spp: None })
+    Ok(LoadedImage {
+        width: w,
+        height: h,
+        rgb,
+        variance: None,
+        spp: None,
+    })
 }
 
 #[cfg(test)]

@@ -27,7 +27,9 @@ pub struct ErrorReport {
 impl ErrorReport {
     /// The bias in standard errors (None without variance).
     pub fn bias_z(&self) -> Option<f64> {
-        self.bias_std_error.filter(|s| *s > 0.0).map(|s| self.relative_bias / s)
+        self.bias_std_error
+            .filter(|s| *s > 0.0)
+            .map(|s| self.relative_bias / s)
     }
 }
 
@@ -40,7 +42,12 @@ pub fn pixel_rel_mse(v: Spectrum, r: Spectrum) -> f32 {
 
 /// Compares `image` (with optional variance of each pixel's mean) to `reference`.
 /// Non-finite pixels are counted and left out of the sums. Slices must have equal length.
-pub fn compare(image: &[Spectrum], variance: Option<&[Spectrum]>, reference: &[Spectrum], reference_variance: Option<&[Spectrum]>) -> ErrorReport {
+pub fn compare(
+    image: &[Spectrum],
+    variance: Option<&[Spectrum]>,
+    reference: &[Spectrum],
+    reference_variance: Option<&[Spectrum]>,
+) -> ErrorReport {
     let (mut se, mut rel, mut sum_v, mut sum_r, mut var) = (0f64, 0f64, 0f64, 0f64, 0f64);
     let (mut nan, mut inf, mut n) = (0, 0, 0usize);
     for (i, (&v, &r)) in image.iter().zip(reference).enumerate() {
@@ -70,7 +77,11 @@ pub fn compare(image: &[Spectrum], variance: Option<&[Spectrum]>, reference: &[S
     ErrorReport {
         mse: se / n,
         rel_mse: rel / n,
-        relative_bias: if sum_r != 0.0 { (sum_v - sum_r) / sum_r } else { 0.0 },
+        relative_bias: if sum_r != 0.0 {
+            (sum_v - sum_r) / sum_r
+        } else {
+            0.0
+        },
         bias_std_error: (has_var && sum_r != 0.0).then(|| var.sqrt() / sum_r.abs()),
         nan_pixels: nan,
         inf_pixels: inf,
@@ -87,7 +98,11 @@ pub fn ramp(t: f32) -> [u8; 3] {
         [94.0, 201.0, 98.0],
         [253.0, 231.0, 37.0],
     ];
-    let t = if t.is_finite() { t.clamp(0.0, 1.0) } else { 1.0 };
+    let t = if t.is_finite() {
+        t.clamp(0.0, 1.0)
+    } else {
+        1.0
+    };
     let x = t * 4.0;
     let i = (x as usize).min(3);
     let f = x - i as f32;
@@ -124,8 +139,16 @@ mod tests {
         assert!((e.rel_mse - (1.0 / 1.01 + 0.01 / 0.01) / 2.0).abs() < 1e-5);
         assert!((e.relative_bias - (6.3 - 3.0) / 3.0).abs() < 1e-5);
         let same = compare(&r, None, &r, None);
-        assert_eq!((same.mse, same.rel_mse, same.relative_bias), (0.0, 0.0, 0.0));
-        let nan = compare(&[Spectrum::splat(f32::NAN), Spectrum::splat(f32::INFINITY)], None, &r, None);
+        assert_eq!(
+            (same.mse, same.rel_mse, same.relative_bias),
+            (0.0, 0.0, 0.0)
+        );
+        let nan = compare(
+            &[Spectrum::splat(f32::NAN), Spectrum::splat(f32::INFINITY)],
+            None,
+            &r,
+            None,
+        );
         assert_eq!((nan.nan_pixels, nan.inf_pixels), (1, 1));
     }
 }

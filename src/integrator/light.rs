@@ -40,9 +40,13 @@ pub(super) fn estimate(
         return Spectrum::ZERO;
     }
     let occluded = if ls.delta {
-        scene.geometry.direction_occluded(hit.p, hit.ng, ls.w_in, ls.distance)
+        scene
+            .geometry
+            .direction_occluded(hit.p, hit.ng, ls.w_in, ls.distance)
     } else {
-        scene.geometry.segment_occluded(hit.p, hit.ng, ls.point, ls.normal)
+        scene
+            .geometry
+            .segment_occluded(hit.p, hit.ng, ls.point, ls.normal)
     };
     if occluded {
         return Spectrum::ZERO;

@@ -66,10 +66,13 @@ impl fmt::Display for EstimatorKind {
 impl FromStr for EstimatorKind {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
-        EstimatorKind::ALL.into_iter().find(|k| k.name() == s).ok_or_else(|| {
-            let known: Vec<_> = EstimatorKind::ALL.iter().map(|k| k.name()).collect();
-            format!("unknown estimator \"{s}\" (known: {})", known.join(", "))
-        })
+        EstimatorKind::ALL
+            .into_iter()
+            .find(|k| k.name() == s)
+            .ok_or_else(|| {
+                let known: Vec<_> = EstimatorKind::ALL.iter().map(|k| k.name()).collect();
+                format!("unknown estimator \"{s}\" (known: {})", known.join(", "))
+            })
     }
 }
 
@@ -86,7 +89,10 @@ impl Estimator {
     /// The estimator `kind` for `scene`, choosing lights with `select`.
     pub fn new(scene: &Scene, kind: EstimatorKind, select: LightSelect) -> Estimator {
         let powers: Vec<f32> = scene.lights.iter().map(|l| l.power()).collect();
-        Estimator { kind, selector: Selector::new(select, &powers) }
+        Estimator {
+            kind,
+            selector: Selector::new(select, &powers),
+        }
     }
 
     /// Radiance along a camera ray: emission seen directly plus one estimate of direct
@@ -100,15 +106,27 @@ impl Estimator {
     }
 
     /// One sample of reflected direct light L_out(x, ω_out) at a surface hit.
-    pub fn direct(&self, scene: &Scene, hit: &SurfaceHit, w_out: Vec3, src: &mut impl Uniform) -> Spectrum {
+    pub fn direct(
+        &self,
+        scene: &Scene,
+        hit: &SurfaceHit,
+        w_out: Vec3,
+        src: &mut impl Uniform,
+    ) -> Spectrum {
         let material = &scene.materials[hit.material as usize];
         let w_out_local = hit.frame.to_local(w_out);
         if w_out_local.z <= 0.0 || w_out.dot(hit.ng) <= 0.0 {
             return Spectrum::ZERO; // seen from behind: one-sided BSDFs reflect nothing
         }
-        let at = ShadingPoint { p: hit.p, ng: hit.ng, n: hit.frame.n };
+        let at = ShadingPoint {
+            p: hit.p,
+            ng: hit.ng,
+            n: hit.frame.n,
+        };
         match self.kind {
-            EstimatorKind::Light => light::estimate(scene, &self.selector, &at, hit, material, w_out_local, src),
+            EstimatorKind::Light => {
+                light::estimate(scene, &self.selector, &at, hit, material, w_out_local, src)
+            }
             kind => directional::estimate(scene, kind, hit, material, w_out_local, src),
         }
     }

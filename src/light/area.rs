@@ -40,10 +40,16 @@ impl fmt::Display for LightSampling {
 impl FromStr for LightSampling {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
-        LightSampling::ALL.into_iter().find(|k| k.name() == s).ok_or_else(|| {
-            let known: Vec<_> = LightSampling::ALL.iter().map(|k| k.name()).collect();
-            format!("unknown light sampling \"{s}\" (known: {})", known.join(", "))
-        })
+        LightSampling::ALL
+            .into_iter()
+            .find(|k| k.name() == s)
+            .ok_or_else(|| {
+                let known: Vec<_> = LightSampling::ALL.iter().map(|k| k.name()).collect();
+                format!(
+                    "unknown light sampling \"{s}\" (known: {})",
+                    known.join(", ")
+                )
+            })
     }
 }
 
@@ -68,7 +74,11 @@ pub fn sample_shape_area(shape: &Shape, u: Vec2) -> (Vec3, Vec3) {
         Shape::Rectangle(r) => (r.point(u), r.normal),
         Shape::Triangle(t) => {
             // Folding (lecture): (α, β) with α + β > 1 maps to (1 − α, 1 − β).
-            let (a, b) = if u.x + u.y > 1.0 { (1.0 - u.x, 1.0 - u.y) } else { (u.x, u.y) };
+            let (a, b) = if u.x + u.y > 1.0 {
+                (1.0 - u.x, 1.0 - u.y)
+            } else {
+                (u.x, u.y)
+            };
             (t.p0 + a * t.e1 + b * t.e2, t.normal())
         }
         Shape::Sphere(s) => {
@@ -87,7 +97,11 @@ impl AreaLight {
     /// Radiance leaving a point with normal `ny` in direction `w`.
     #[inline]
     pub fn emitted(&self, ny: Vec3, w: Vec3) -> Spectrum {
-        if self.two_sided || ny.dot(w) > 0.0 { self.radiance } else { Spectrum::ZERO }
+        if self.two_sided || ny.dot(w) > 0.0 {
+            self.radiance
+        } else {
+            Spectrum::ZERO
+        }
     }
 
     /// Power Φ = π·L·A (×2 when two-sided), as luminance.

@@ -49,7 +49,11 @@ pub struct LightSample {
 #[inline]
 pub fn area_to_solid_angle(pdf_area: f32, distance_squared: f32, cos_theta_y: f32) -> f32 {
     let c = cos_theta_y.abs();
-    if c <= 0.0 { 0.0 } else { pdf_area * distance_squared / c }
+    if c <= 0.0 {
+        0.0
+    } else {
+        pdf_area * distance_squared / c
+    }
 }
 
 /// A light source of the scene (a closed set: one `match` per call).

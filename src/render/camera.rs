@@ -24,21 +24,45 @@ pub struct Camera {
 impl Camera {
     /// A camera at `origin` looking at `target` with `up`, horizontal field of view
     /// `fov_x_degrees`, `width`×`height` pixels.
-    pub fn look_at(origin: Vec3, target: Vec3, up: Vec3, fov_x_degrees: f32, width: u32, height: u32) -> Camera {
-        Camera::new(look_at_transform(origin, target, up), fov_x_degrees, width, height)
+    pub fn look_at(
+        origin: Vec3,
+        target: Vec3,
+        up: Vec3,
+        fov_x_degrees: f32,
+        width: u32,
+        height: u32,
+    ) -> Camera {
+        Camera::new(
+            look_at_transform(origin, target, up),
+            fov_x_degrees,
+            width,
+            height,
+        )
     }
 
     /// A camera with a camera-to-world transform and horizontal field of view.
     pub fn new(to_world: Affine3A, fov_x_degrees: f32, width: u32, height: u32) -> Camera {
         let tan_half_x = (0.5 * fov_x_degrees.to_radians()).tan();
         let aspect = width as f32 / height.max(1) as f32;
-        Camera { to_world, tan_half_x, tan_half_y: tan_half_x / aspect, width, height, near_clip: 1e-2 }
+        Camera {
+            to_world,
+            tan_half_x,
+            tan_half_y: tan_half_x / aspect,
+            width,
+            height,
+            near_clip: 1e-2,
+        }
     }
 
     /// The same camera with another resolution (the field of view along x is kept).
     pub fn with_resolution(&self, width: u32, height: u32) -> Camera {
         let aspect = width as f32 / height.max(1) as f32;
-        Camera { width, height, tan_half_y: self.tan_half_x / aspect, ..self.clone() }
+        Camera {
+            width,
+            height,
+            tan_half_y: self.tan_half_x / aspect,
+            ..self.clone()
+        }
     }
 
     /// The ray through film position `p` in pixels (x right, y down, (0,0) the top-left
@@ -47,7 +71,11 @@ impl Camera {
     pub fn ray(&self, p: Vec2) -> Ray {
         let sx = p.x / self.width as f32;
         let sy = p.y / self.height as f32;
-        let local = Vec3::new((1.0 - 2.0 * sx) * self.tan_half_x, (1.0 - 2.0 * sy) * self.tan_half_y, 1.0);
+        let local = Vec3::new(
+            (1.0 - 2.0 * sx) * self.tan_half_x,
+            (1.0 - 2.0 * sy) * self.tan_half_y,
+            1.0,
+        );
         let d = self.to_world.transform_vector3(local).normalize();
         let o = self.to_world.transform_point3(Vec3::ZERO);
         Ray::new(o + d * self.near_clip, d)

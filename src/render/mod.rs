@@ -69,7 +69,13 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
                         let mut stats = *film.pixel(x, y);
                         let pixel = (y * w + x) as u64;
                         for s in s0..s1 {
-                            let mut sampler = Sampler::new(settings.sampler, settings.seed, pixel, s, settings.spp);
+                            let mut sampler = Sampler::new(
+                                settings.sampler,
+                                settings.seed,
+                                pixel,
+                                s,
+                                settings.spp,
+                            );
                             let p = Vec2::new(x as f32, y as f32) + sampler.next_2d();
                             let l = estimator.radiance(scene, &camera.ray(p), &mut sampler);
                             stats.add(if l.is_finite() {
@@ -98,7 +104,13 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
             break;
         }
     }
-    RenderOutput { film, time: start.elapsed(), spp: done - first, invalid_samples: invalid.into_inner(), stopped }
+    RenderOutput {
+        film,
+        time: start.elapsed(),
+        spp: done - first,
+        invalid_samples: invalid.into_inner(),
+        stopped,
+    }
 }
 
 /// Tiles (x0, y0, x1, y1) covering the image, row by row.
@@ -124,5 +136,12 @@ fn round_boundaries(first: u32, last: u32) -> Vec<u32> {
 /// A render with no progress output and no stop request.
 pub fn render_quiet(scene: &Scene, settings: &RenderSettings) -> RenderOutput {
     let stop = AtomicBool::new(false);
-    render(scene, settings, &Control { progress: &|_, _| {}, stop: &stop })
+    render(
+        scene,
+        settings,
+        &Control {
+            progress: &|_, _| {},
+            stop: &stop,
+        },
+    )
 }

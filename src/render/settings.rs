@@ -44,11 +44,17 @@ impl FromStr for Pass {
     fn from_str(s: &str) -> Result<Self, String> {
         let err = || format!("bad pass \"{s}\": expected I/N with 1 ≤ I ≤ N, e.g. 2/8");
         let (i, n) = s.split_once('/').ok_or_else(err)?;
-        let (i, n): (u32, u32) = (i.trim().parse().map_err(|_| err())?, n.trim().parse().map_err(|_| err())?);
+        let (i, n): (u32, u32) = (
+            i.trim().parse().map_err(|_| err())?,
+            n.trim().parse().map_err(|_| err())?,
+        );
         if i == 0 || n == 0 || i > n {
             return Err(err());
         }
-        Ok(Pass { index: i - 1, count: n })
+        Ok(Pass {
+            index: i - 1,
+            count: n,
+        })
     }
 }
 
@@ -101,7 +107,12 @@ impl RenderSettings {
     pub fn flags(&self) -> String {
         format!(
             "--estimator {} --light-sampling {} --light-select {} --sampler {} --spp {} --seed {}",
-            self.estimator, self.light_sampling, self.light_select, self.sampler, self.spp, self.seed
+            self.estimator,
+            self.light_sampling,
+            self.light_select,
+            self.sampler,
+            self.spp,
+            self.seed
         )
     }
 }

@@ -22,7 +22,10 @@ pub struct Emission {
 impl Emission {
     /// One-sided emission of radiance `r`.
     pub fn new(r: Spectrum) -> Emission {
-        Emission { radiance: r, two_sided: false }
+        Emission {
+            radiance: r,
+            two_sided: false,
+        }
     }
 }
 
@@ -39,7 +42,13 @@ pub struct SceneBuilder {
 impl SceneBuilder {
     /// An empty scene called `name`.
     pub fn new(name: impl Into<String>) -> SceneBuilder {
-        SceneBuilder { name: name.into(), prims: Vec::new(), meshes: Vec::new(), materials: Vec::new(), lights: Vec::new() }
+        SceneBuilder {
+            name: name.into(),
+            prims: Vec::new(),
+            meshes: Vec::new(),
+            materials: Vec::new(),
+            lights: Vec::new(),
+        }
     }
 
     /// Adds a material and returns its index.
@@ -62,25 +71,46 @@ impl SceneBuilder {
             }
             None => NO_LIGHT,
         };
-        self.prims.push(Primitive { shape, material, light });
+        self.prims.push(Primitive {
+            shape,
+            material,
+            light,
+        });
         self
     }
 
     /// Adds a sphere.
-    pub fn sphere(&mut self, center: Vec3, radius: f32, material: u32, emission: Option<Emission>) -> &mut Self {
+    pub fn sphere(
+        &mut self,
+        center: Vec3,
+        radius: f32,
+        material: u32,
+        emission: Option<Emission>,
+    ) -> &mut Self {
         self.shape(Shape::Sphere(Sphere { center, radius }), material, emission)
     }
 
     /// Adds a rectangle with corner `o` and perpendicular edges `ea`, `eb` (front side
     /// ea × eb). Non-perpendicular or degenerate edges are a programming error in a
     /// built-in scene and are reported when the scene is built.
-    pub fn rectangle(&mut self, o: Vec3, ea: Vec3, eb: Vec3, material: u32, emission: Option<Emission>) -> &mut Self {
+    pub fn rectangle(
+        &mut self,
+        o: Vec3,
+        ea: Vec3,
+        eb: Vec3,
+        material: u32,
+        emission: Option<Emission>,
+    ) -> &mut Self {
         match Rectangle::new(o, ea, eb) {
             Some(r) => self.shape(Shape::Rectangle(r), material, emission),
             None => {
                 // Keep a degenerate marker so `build` can report it.
                 self.prims.push(Primitive {
-                    shape: Shape::Disk(Disk { center: o, normal: Vec3::ZERO, radius: f32::NAN }),
+                    shape: Shape::Disk(Disk {
+                        center: o,
+                        normal: Vec3::ZERO,
+                        radius: f32::NAN,
+                    }),
                     material,
                     light: NO_LIGHT,
                 });
@@ -90,16 +120,41 @@ impl SceneBuilder {
     }
 
     /// Adds a disk.
-    pub fn disk(&mut self, center: Vec3, normal: Vec3, radius: f32, material: u32, emission: Option<Emission>) -> &mut Self {
-        self.shape(Shape::Disk(Disk { center, normal: normal.normalize(), radius }), material, emission)
+    pub fn disk(
+        &mut self,
+        center: Vec3,
+        normal: Vec3,
+        radius: f32,
+        material: u32,
+        emission: Option<Emission>,
+    ) -> &mut Self {
+        self.shape(
+            Shape::Disk(Disk {
+                center,
+                normal: normal.normalize(),
+                radius,
+            }),
+            material,
+            emission,
+        )
     }
 
     /// Adds a triangle mesh; with emission, every triangle becomes a light.
     pub fn mesh(&mut self, mesh: Mesh, material: u32, emission: Option<Emission>) -> &mut Self {
         let mesh_index = self.meshes.len() as u32;
         for (i, &[a, b, c]) in mesh.indices.iter().enumerate() {
-            let (p0, p1, p2) = (mesh.positions[a as usize], mesh.positions[b as usize], mesh.positions[c as usize]);
-            let tri = Triangle { p0, e1: p1 - p0, e2: p2 - p0, mesh: mesh_index, index: i as u32 };
+            let (p0, p1, p2) = (
+                mesh.positions[a as usize],
+                mesh.positions[b as usize],
+                mesh.positions[c as usize],
+            );
+            let tri = Triangle {
+                p0,
+                e1: p1 - p0,
+                e2: p2 - p0,
+                mesh: mesh_index,
+                index: i as u32,
+            };
             self.shape(Shape::Triangle(tri), material, emission);
         }
         self.meshes.push(mesh);
@@ -108,7 +163,10 @@ impl SceneBuilder {
 
     /// Adds a point light.
     pub fn point_light(&mut self, position: Vec3, intensity: Spectrum) -> &mut Self {
-        self.lights.push(Light::Point(PointLight { position, intensity }));
+        self.lights.push(Light::Point(PointLight {
+            position,
+            intensity,
+        }));
         self
     }
 
@@ -118,13 +176,27 @@ impl SceneBuilder {
         for (i, p) in self.prims.iter().enumerate() {
             let b = p.shape.bounds();
             if !(b.min.is_finite() && b.max.is_finite()) || p.shape.area().is_nan() {
-                return Err(err(format!("shape {i} is degenerate or not finite: {:?}", p.shape)));
+                return Err(err(format!(
+                    "shape {i} is degenerate or not finite: {:?}",
+                    p.shape
+                )));
             }
             if p.material as usize >= self.materials.len() {
-                return Err(err(format!("shape {i} uses material {} of {}", p.material, self.materials.len())));
+                return Err(err(format!(
+                    "shape {i} uses material {} of {}",
+                    p.material,
+                    self.materials.len()
+                )));
             }
         }
         let geometry = Geometry::new(self.prims, self.meshes);
-        Ok(Scene { name: self.name, camera, geometry, materials: self.materials, lights: self.lights, spp })
+        Ok(Scene {
+            name: self.name,
+            camera,
+            geometry,
+            materials: self.materials,
+            lights: self.lights,
+            spp,
+        })
     }
 }

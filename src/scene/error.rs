@@ -16,8 +16,16 @@ pub struct SceneError {
 
 impl SceneError {
     /// An error in `source` at `location`.
-    pub fn new(source: impl Into<String>, location: Option<(u32, u32)>, message: impl Into<String>) -> SceneError {
-        SceneError { source: source.into(), location, message: message.into() }
+    pub fn new(
+        source: impl Into<String>,
+        location: Option<(u32, u32)>,
+        message: impl Into<String>,
+    ) -> SceneError {
+        SceneError {
+            source: source.into(),
+            location,
+            message: message.into(),
+        }
     }
 }
 

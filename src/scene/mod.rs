@@ -34,6 +34,10 @@ pub struct Scene {
 pub fn load(spec: &str) -> Result<Scene, SceneError> {
     match spec.strip_prefix("builtin:") {
         Some(name) => builtin::build(name),
-        None => Err(SceneError::new(spec, None, "scene files are not supported yet; use builtin:NAME")),
+        None => Err(SceneError::new(
+            spec,
+            None,
+            "scene files are not supported yet; use builtin:NAME",
+        )),
     }
 }

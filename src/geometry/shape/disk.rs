@@ -20,8 +20,14 @@ pub struct Disk {
 impl Disk {
     /// Bounding box (tight per axis: extent r·√(1 − n_i²)).
     pub fn bounds(&self) -> Aabb {
-        let e = self.radius * (Vec3::ONE - self.normal * self.normal).max(Vec3::ZERO).powf(0.5);
-        Aabb { min: self.center - e, max: self.center + e }
+        let e = self.radius
+            * (Vec3::ONE - self.normal * self.normal)
+                .max(Vec3::ZERO)
+                .powf(0.5);
+        Aabb {
+            min: self.center - e,
+            max: self.center + e,
+        }
     }
 
     /// Area πr².
@@ -53,6 +59,9 @@ impl Disk {
         let local = self.frame().to_local(q);
         let phi = local.y.atan2(local.x);
         let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
-        Some(ShapeHit { t, uv: Vec2::new(r2.sqrt() / self.radius, phi / (2.0 * PI)) })
+        Some(ShapeHit {
+            t,
+            uv: Vec2::new(r2.sqrt() / self.radius, phi / (2.0 * PI)),
+        })
     }
 }

@@ -103,8 +103,12 @@ impl Shape {
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
         match self {
-            Shape::Triangle(t) => intersect_triangle(ray, t.p0, t.e1, t.e2, t_max)
-                .map(|h| ShapeHit { t: h.t, uv: Vec2::new(h.b1, h.b2) }),
+            Shape::Triangle(t) => {
+                intersect_triangle(ray, t.p0, t.e1, t.e2, t_max).map(|h| ShapeHit {
+                    t: h.t,
+                    uv: Vec2::new(h.b1, h.b2),
+                })
+            }
             Shape::Sphere(s) => s.intersect(ray, t_max),
             Shape::Rectangle(r) => r.intersect(ray, t_max),
             Shape::Disk(d) => d.intersect(ray, t_max),
@@ -115,10 +119,22 @@ impl Shape {
     #[inline]
     pub fn geometry_at(&self, p: Vec3, hit: &ShapeHit) -> SurfaceGeometry {
         match self {
-            Shape::Triangle(t) => SurfaceGeometry { ng: t.normal(), uv: hit.uv },
-            Shape::Sphere(s) => SurfaceGeometry { ng: s.normal_at(p), uv: hit.uv },
-            Shape::Rectangle(r) => SurfaceGeometry { ng: r.normal, uv: hit.uv },
-            Shape::Disk(d) => SurfaceGeometry { ng: d.normal, uv: hit.uv },
+            Shape::Triangle(t) => SurfaceGeometry {
+                ng: t.normal(),
+                uv: hit.uv,
+            },
+            Shape::Sphere(s) => SurfaceGeometry {
+                ng: s.normal_at(p),
+                uv: hit.uv,
+            },
+            Shape::Rectangle(r) => SurfaceGeometry {
+                ng: r.normal,
+                uv: hit.uv,
+            },
+            Shape::Disk(d) => SurfaceGeometry {
+                ng: d.normal,
+                uv: hit.uv,
+            },
         }
     }
 }

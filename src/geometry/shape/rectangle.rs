@@ -26,12 +26,22 @@ impl Rectangle {
         let n = ea.cross(eb);
         let len = n.length();
         let perpendicular = ea.dot(eb).abs() <= 1e-3 * ea.length() * eb.length();
-        (len > 0.0 && len.is_finite() && perpendicular).then(|| Rectangle { o, ea, eb, normal: n / len })
+        (len > 0.0 && len.is_finite() && perpendicular).then(|| Rectangle {
+            o,
+            ea,
+            eb,
+            normal: n / len,
+        })
     }
 
     /// The four corners a, b, c, d in order.
     pub fn corners(&self) -> [Vec3; 4] {
-        [self.o, self.o + self.ea, self.o + self.ea + self.eb, self.o + self.eb]
+        [
+            self.o,
+            self.o + self.ea,
+            self.o + self.ea + self.eb,
+            self.o + self.eb,
+        ]
     }
 
     /// Bounding box.
@@ -64,7 +74,9 @@ impl Rectangle {
         let q = ray.at(t) - self.o;
         let alpha = q.dot(self.ea) / self.ea.length_squared();
         let beta = q.dot(self.eb) / self.eb.length_squared();
-        ((0.0..=1.0).contains(&alpha) && (0.0..=1.0).contains(&beta))
-            .then_some(ShapeHit { t, uv: Vec2::new(alpha, beta) })
+        ((0.0..=1.0).contains(&alpha) && (0.0..=1.0).contains(&beta)).then_some(ShapeHit {
+            t,
+            uv: Vec2::new(alpha, beta),
+        })
     }
 }

@@ -18,7 +18,10 @@ pub struct Sphere {
 impl Sphere {
     /// Bounding box.
     pub fn bounds(&self) -> Aabb {
-        Aabb { min: self.center - Vec3::splat(self.radius), max: self.center + Vec3::splat(self.radius) }
+        Aabb {
+            min: self.center - Vec3::splat(self.radius),
+            max: self.center + Vec3::splat(self.radius),
+        }
     }
 
     /// Surface area 4πr².
@@ -76,14 +79,26 @@ mod tests {
 
     #[test]
     fn hits_from_outside_and_inside() {
-        let s = Sphere { center: Vec3::new(0.0, 0.0, 5.0), radius: 1.0 };
-        let h = s.intersect(&Ray::new(Vec3::ZERO, Vec3::Z), 100.0).expect("hit");
+        let s = Sphere {
+            center: Vec3::new(0.0, 0.0, 5.0),
+            radius: 1.0,
+        };
+        let h = s
+            .intersect(&Ray::new(Vec3::ZERO, Vec3::Z), 100.0)
+            .expect("hit");
         assert!((h.t - 4.0).abs() < 1e-5);
-        let h = s.intersect(&Ray::new(s.center, Vec3::X), 100.0).expect("inside hit");
+        let h = s
+            .intersect(&Ray::new(s.center, Vec3::X), 100.0)
+            .expect("inside hit");
         assert!((h.t - 1.0).abs() < 1e-5);
         assert!(s.intersect(&Ray::new(Vec3::ZERO, Vec3::X), 100.0).is_none());
-        let tiny = Sphere { center: Vec3::new(1000.0, 0.0, 0.0), radius: 1e-3 };
-        let h = tiny.intersect(&Ray::new(Vec3::ZERO, Vec3::X), 1e4).expect("tiny far");
+        let tiny = Sphere {
+            center: Vec3::new(1000.0, 0.0, 0.0),
+            radius: 1e-3,
+        };
+        let h = tiny
+            .intersect(&Ray::new(Vec3::ZERO, Vec3::X), 1e4)
+            .expect("tiny far");
         assert!((h.t - (1000.0 - 1e-3)).abs() < 1e-3);
     }
 }

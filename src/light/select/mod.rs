@@ -58,10 +58,16 @@ impl fmt::Display for LightSelect {
 impl FromStr for LightSelect {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
-        LightSelect::ALL.into_iter().find(|k| k.name() == s).ok_or_else(|| {
-            let known: Vec<_> = LightSelect::ALL.iter().map(|k| k.name()).collect();
-            format!("unknown light selection \"{s}\" (known: {})", known.join(", "))
-        })
+        LightSelect::ALL
+            .into_iter()
+            .find(|k| k.name() == s)
+            .ok_or_else(|| {
+                let known: Vec<_> = LightSelect::ALL.iter().map(|k| k.name()).collect();
+                format!(
+                    "unknown light selection \"{s}\" (known: {})",
+                    known.join(", ")
+                )
+            })
     }
 }
 

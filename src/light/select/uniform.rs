@@ -26,11 +26,19 @@ impl LightSelector for UniformSelector {
         let n = self.count as f32;
         let index = ((u * n) as usize).min(self.count - 1);
         let u_reused = (u * n - index as f32).clamp(0.0, ONE_MINUS_EPSILON);
-        Some(Selection { index, pmf: 1.0 / n, u_reused })
+        Some(Selection {
+            index,
+            pmf: 1.0 / n,
+            u_reused,
+        })
     }
 
     #[inline]
     fn pmf(&self, _at: &ShadingPoint, index: usize) -> f32 {
-        if index < self.count { 1.0 / self.count as f32 } else { 0.0 }
+        if index < self.count {
+            1.0 / self.count as f32
+        } else {
+            0.0
+        }
     }
 }

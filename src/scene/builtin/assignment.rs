@@ -20,19 +20,47 @@ pub const LIGHT_RADIANCE: f32 = 120.0;
 /// Builds the scene.
 pub fn build() -> Result<Scene, SceneError> {
     let mut b = SceneBuilder::new("builtin:assignment");
-    let grey = b.material(Material::Diffuse(Diffuse { reflectance: Spectrum::splat(0.6) }));
-    let wall = b.material(Material::Diffuse(Diffuse { reflectance: Spectrum::new(0.55, 0.55, 0.6) }));
-    let matte = b.material(Material::Diffuse(Diffuse { reflectance: Spectrum::new(0.7, 0.35, 0.25) }));
+    let grey = b.material(Material::Diffuse(Diffuse {
+        reflectance: Spectrum::splat(0.6),
+    }));
+    let wall = b.material(Material::Diffuse(Diffuse {
+        reflectance: Spectrum::new(0.55, 0.55, 0.6),
+    }));
+    let matte = b.material(Material::Diffuse(Diffuse {
+        reflectance: Spectrum::new(0.7, 0.35, 0.25),
+    }));
     let phong = |n: f32| {
-        Material::Phong(Phong { kd: Spectrum::new(0.1, 0.15, 0.35), ks: Spectrum::splat(0.6), exponent: n })
+        Material::Phong(Phong {
+            kd: Spectrum::new(0.1, 0.15, 0.35),
+            ks: Spectrum::splat(0.6),
+            exponent: n,
+        })
     };
-    let phongs = [b.material(phong(10.0)), b.material(phong(100.0)), b.material(phong(1000.0))];
-    let light_mat = b.material(Material::Diffuse(Diffuse { reflectance: Spectrum::ZERO }));
+    let phongs = [
+        b.material(phong(10.0)),
+        b.material(phong(100.0)),
+        b.material(phong(1000.0)),
+    ];
+    let light_mat = b.material(Material::Diffuse(Diffuse {
+        reflectance: Spectrum::ZERO,
+    }));
 
     let h = 0.5 * FLOOR_SIDE;
     // Floor y = 0, front side up; back wall z = −h, front side towards +z.
-    b.rectangle(Vec3::new(-h, 0.0, h), Vec3::new(2.0 * h, 0.0, 0.0), Vec3::new(0.0, 0.0, -2.0 * h), grey, None);
-    b.rectangle(Vec3::new(-h, 0.0, -h), Vec3::new(2.0 * h, 0.0, 0.0), Vec3::new(0.0, 2.0 * h, 0.0), wall, None);
+    b.rectangle(
+        Vec3::new(-h, 0.0, h),
+        Vec3::new(2.0 * h, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, -2.0 * h),
+        grey,
+        None,
+    );
+    b.rectangle(
+        Vec3::new(-h, 0.0, -h),
+        Vec3::new(2.0 * h, 0.0, 0.0),
+        Vec3::new(0.0, 2.0 * h, 0.0),
+        wall,
+        None,
+    );
 
     let r = 0.45;
     b.sphere(Vec3::new(-1.65, r, 0.0), r, matte, None);
@@ -50,6 +78,13 @@ pub fn build() -> Result<Scene, SceneError> {
         Some(Emission::new(Spectrum::splat(LIGHT_RADIANCE))),
     );
 
-    let camera = Camera::look_at(Vec3::new(0.0, 1.6, 5.2), Vec3::new(0.0, 0.55, 0.0), Vec3::Y, 45.0, 384, 256);
+    let camera = Camera::look_at(
+        Vec3::new(0.0, 1.6, 5.2),
+        Vec3::new(0.0, 0.55, 0.0),
+        Vec3::Y,
+        45.0,
+        384,
+        256,
+    );
     b.build(camera, 16)
 }

@@ -1,0 +1,344 @@
+//! The binary build: top-down binned SAH (Wald 2007, "On fast Construction of SAH-based
+//! Bounding Volume Hierarchies"). Primitives are binned by centroid into [`BIN_COUNT`]
+//! bins per axis; the split with the lowest surface area heuristic cost
+//! (Goldsmith & Salmon 1987; MacDonald & Booth 1990) is taken, or a leaf when that is
+//! cheaper. Large subtrees are built in parallel with `rayon::join`.
+//!
+//! Nodes live in one array where a subtree over `m` primitives owns exactly `2m − 1`
+//! consecutive slots, so parallel subtrees write to disjoint slices and nothing is
+//! copied afterwards. Slots a subtree does not need stay unused; only the wide collapse
+//! reads this tree, by following child links.
+
+use glam::Vec3;
+
+use super::node::MAX_LEAF_SIZE;
+use crate::geometry::Aabb;
+
+/// Centroid bins per axis.
+const BIN_COUNT: usize = 16;
+/// SAH cost of one traversal step, relative to one primitive test.
+const TRAVERSAL_COST: f32 = 1.0;
+/// Subtrees with fewer primitives than this are built on the current thread.
+const PARALLEL_THRESHOLD: usize = 4096;
+/// Below this depth SAH chooses splits; deeper nodes split at the object median, which
+/// bounds the tree depth (and so the traversal stack) for any input.
+const MAX_SAH_DEPTH: usize = 40;
+
+/// A node of the binary tree. A leaf has `count > 0` primitives at `first ..` in the
+/// primitive order; an inner node has `count == 0` and children `left`, `right`.
+#[derive(Clone, Copy, Debug)]
+pub struct BinaryNode {
+    /// Box of everything below.
+    pub bounds: Aabb,
+    /// First primitive (leaf) or left child (inner node).
+    pub first_or_left: u32,
+    /// Right child (inner node only).
+    pub right: u32,
+    /// Primitive count; 0 for an inner node.
+    pub count: u32,
+}
+
+/// A binary BVH: nodes (root at 0) and primitive indices in leaf order.
+pub struct BinaryBvh {
+    /// Nodes; a subtree over m primitives owns 2m − 1 slots (some may be unused).
+    pub nodes: Vec<BinaryNode>,
+    /// Primitive indices in leaf order.
+    pub order: Vec<u32>,
+}
+
+/// Builds the binary tree over `bounds` (which must be non-empty). Primitives with empty
+/// or non-finite boxes are kept: boxes with a NaN count as empty, and centroids that are
+/// not finite are replaced by a finite stand-in for binning.
+pub fn build_binary(bounds: &[Aabb]) -> BinaryBvh {
+    let has_nan = |b: &Aabb| b.min.is_nan() || b.max.is_nan();
+    let sanitized: Vec<Aabb>;
+    let bounds = if bounds.iter().any(has_nan) {
+        sanitized = bounds
+            .iter()
+            .map(|b| if has_nan(b) { Aabb::EMPTY } else { *b })
+            .collect();
+        &sanitized[..]
+    } else {
+        bounds
+    };
+    let centroids: Vec<Vec3> = bounds
+        .iter()
+        .map(|b| {
+            let c = b.centroid();
+            if c.is_finite() { c } else { Vec3::ZERO }
+        })
+        .collect();
+    let mut order: Vec<u32> = (0..bounds.len() as u32).collect();
+    let unused = BinaryNode {
+        bounds: Aabb::EMPTY,
+        first_or_left: 0,
+        right: 0,
+        count: 0,
+    };
+    let mut nodes = vec![unused; 2 * bounds.len() - 1];
+    let input = Input {
+        bounds,
+        centroids: &centroids,
+    };
+    build_subtree(&input, &mut nodes, 0, &mut order, 0, 0);
+    BinaryBvh { nodes, order }
+}
+
+/// Read-only build input shared by all threads.
+struct Input<'a> {
+    bounds: &'a [Aabb],
+    centroids: &'a [Vec3],
+}
+
+/// Builds the subtree over `prims` (the primitive order from position `first`) into
+/// `nodes`, whose slot 0 is global index `node_base`.
+fn build_subtree(
+    input: &Input,
+    nodes: &mut [BinaryNode],
+    node_base: u32,
+    prims: &mut [u32],
+    first: u32,
+    depth: usize,
+) {
+    let (bounds, centroid_bounds) = bounds_of(input, prims);
+    let split = if depth < MAX_SAH_DEPTH {
+        sah_split(input, prims, &bounds, &centroid_bounds)
+    } else {
+        None
+    };
+    let left_count = match split {
+        Some(Split::Leaf) => 0,
+        Some(Split::At { axis, bin }) => partition(input, prims, &centroid_bounds, axis, bin),
+        None if prims.len() <= MAX_LEAF_SIZE => 0,
+        None => median_split(input, prims, &centroid_bounds),
+    };
+    if left_count == 0 {
+        nodes[0] = BinaryNode {
+            bounds,
+            first_or_left: first,
+            right: 0,
+            count: prims.len() as u32,
+        };
+        return;
+    }
+    // The left subtree owns slots 1 .. 2·left_count, the right one the rest.
+    let left_slots = 2 * left_count - 1;
+    let left = node_base + 1;
+    let right = left + left_slots as u32;
+    nodes[0] = BinaryNode {
+        bounds,
+        first_or_left: left,
+        right,
+        count: 0,
+    };
+    let (left_nodes, right_nodes) = nodes[1..].split_at_mut(left_slots);
+    let (left_prims, right_prims) = prims.split_at_mut(left_count);
+    let right_first = first + left_count as u32;
+    let parallel = left_count.min(right_prims.len()) >= PARALLEL_THRESHOLD;
+    let build_left = move || build_subtree(input, left_nodes, left, left_prims, first, depth + 1);
+    let build_right = move || {
+        build_subtree(
+            input,
+            right_nodes,
+            right,
+            right_prims,
+            right_first,
+            depth + 1,
+        )
+    };
+    if parallel {
+        rayon::join(build_left, build_right);
+    } else {
+        run_in_turn(build_left, build_right);
+    }
+}
+
+/// Runs `a` then `b` on this thread (the serial counterpart of `rayon::join`).
+fn run_in_turn(a: impl FnOnce(), b: impl FnOnce()) {
+    a();
+    b();
+}
+
+/// The box of the primitives and the box of their centroids.
+fn bounds_of(input: &Input, prims: &[u32]) -> (Aabb, Aabb) {
+    prims.iter().fold((Aabb::EMPTY, Aabb::EMPTY), |(b, c), &p| {
+        (
+            b.union(input.bounds[p as usize]),
+            c.grow(input.centroids[p as usize]),
+        )
+    })
+}
+
+/// The outcome of the SAH evaluation.
+enum Split {
+    /// Making a leaf is cheapest.
+    Leaf,
+    /// Split before centroid bin `bin` along `axis`.
+    At { axis: usize, bin: usize },
+}
+
+/// Bin index of centroid `c` along `axis`: saturating float-to-int casts keep it in range
+/// for any input.
+#[inline]
+fn bin_of(c: Vec3, centroid_bounds: &Aabb, axis: usize) -> usize {
+    let extent = centroid_bounds.max[axis] - centroid_bounds.min[axis];
+    let scale = BIN_COUNT as f32 * (1.0 - 1e-6) / extent;
+    (((c[axis] - centroid_bounds.min[axis]) * scale) as usize).min(BIN_COUNT - 1)
+}
+
+/// The best SAH split (Wald 2007, §3), `Leaf` when a leaf costs less, or `None` when the
+/// centroids cannot be separated by binning.
+fn sah_split(input: &Input, prims: &[u32], bounds: &Aabb, centroid_bounds: &Aabb) -> Option<Split> {
+    let n = prims.len();
+    if n == 1 {
+        return Some(Split::Leaf);
+    }
+    let extent = centroid_bounds.extent();
+    let mut bins = [[(Aabb::EMPTY, 0u32); BIN_COUNT]; 3];
+    for &p in prims {
+        let c = input.centroids[p as usize];
+        for (axis, axis_bins) in bins.iter_mut().enumerate() {
+            if extent[axis] > 0.0 {
+                let bin = &mut axis_bins[bin_of(c, centroid_bounds, axis)];
+                *bin = (bin.0.union(input.bounds[p as usize]), bin.1 + 1);
+            }
+        }
+    }
+    // Cost relative to one primitive test per unit of parent area:
+    // C = C_trav + (A_L·N_L + A_R·N_R) / A.
+    let mut best: Option<(f32, usize, usize)> = None;
+    for (axis, axis_bins) in bins.iter().enumerate() {
+        if extent[axis] <= 0.0 {
+            continue;
+        }
+        // Sweep from the right storing A_R·N_R, then from the left evaluating the cost.
+        let mut right_cost = [0.0f32; BIN_COUNT];
+        let (mut acc, mut count) = (Aabb::EMPTY, 0u32);
+        for bin in (1..BIN_COUNT).rev() {
+            acc = acc.union(axis_bins[bin].0);
+            count += axis_bins[bin].1;
+            right_cost[bin] = if count > 0 {
+                acc.surface_area() * count as f32
+            } else {
+                f32::INFINITY
+            };
+        }
+        let (mut acc, mut count) = (Aabb::EMPTY, 0u32);
+        for bin in 1..BIN_COUNT {
+            acc = acc.union(axis_bins[bin - 1].0);
+            count += axis_bins[bin - 1].1;
+            let cost = if count > 0 {
+                acc.surface_area() * count as f32 + right_cost[bin]
+            } else {
+                f32::INFINITY
+            };
+            if cost < best.map_or(f32::INFINITY, |b| b.0) {
+                best = Some((cost, axis, bin));
+            }
+        }
+    }
+    let (cost, axis, bin) = best?;
+    let area = bounds.surface_area();
+    let split_cost = TRAVERSAL_COST + if area > 0.0 { cost / area } else { 0.0 };
+    if n <= MAX_LEAF_SIZE && n as f32 <= split_cost {
+        Some(Split::Leaf)
+    } else {
+        Some(Split::At { axis, bin })
+    }
+}
+
+/// Moves primitives whose centroid bin is below `bin` to the front; returns their count.
+fn partition(
+    input: &Input,
+    prims: &mut [u32],
+    centroid_bounds: &Aabb,
+    axis: usize,
+    bin: usize,
+) -> usize {
+    let goes_left = |p: u32| bin_of(input.centroids[p as usize], centroid_bounds, axis) < bin;
+    let mut left = 0;
+    for i in 0..prims.len() {
+        if goes_left(prims[i]) {
+            prims.swap(i, left);
+            left += 1;
+        }
+    }
+    left
+}
+
+/// Splits at the object median along the widest centroid axis; returns the left count.
+fn median_split(input: &Input, prims: &mut [u32], centroid_bounds: &Aabb) -> usize {
+    let extent = centroid_bounds.extent();
+    let axis = if extent.x >= extent.y && extent.x >= extent.z {
+        0
+    } else if extent.y >= extent.z {
+        1
+    } else {
+        2
+    };
+    let mid = prims.len() / 2;
+    prims.select_nth_unstable_by(mid, |&a, &b| {
+        input.centroids[a as usize][axis].total_cmp(&input.centroids[b as usize][axis])
+    });
+    mid
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Checks every reachable node: leaves cover the primitive order once, boxes nest.
+    fn check(tree: &BinaryBvh, bounds: &[Aabb]) {
+        let mut seen = vec![false; bounds.len()];
+        let mut stack = vec![0u32];
+        while let Some(i) = stack.pop() {
+            let node = tree.nodes[i as usize];
+            if node.count > 0 {
+                assert!(node.count as usize <= MAX_LEAF_SIZE.max(1));
+                for k in node.first_or_left..node.first_or_left + node.count {
+                    let p = tree.order[k as usize] as usize;
+                    assert!(!seen[p]);
+                    seen[p] = true;
+                    assert_eq!(node.bounds.union(bounds[p]), node.bounds);
+                }
+            } else {
+                for child in [node.first_or_left, node.right] {
+                    assert_eq!(
+                        node.bounds.union(tree.nodes[child as usize].bounds),
+                        node.bounds
+                    );
+                    stack.push(child);
+                }
+            }
+        }
+        assert!(seen.iter().all(|&s| s));
+    }
+
+    #[test]
+    fn trees_are_valid_for_spread_identical_and_flat_boxes() {
+        let spread: Vec<Aabb> = (0..5000)
+            .map(|i| Aabb::EMPTY.grow(Vec3::new((i * 7919 % 5000) as f32, (i % 13) as f32, 0.0)))
+            .collect();
+        let identical = vec![
+            Aabb {
+                min: Vec3::ZERO,
+                max: Vec3::ONE
+            };
+            1000
+        ];
+        let flat: Vec<Aabb> = (0..100)
+            .map(|i| Aabb::EMPTY.grow(Vec3::X * i as f32).grow(Vec3::Y))
+            .collect();
+        let with_empty = vec![
+            Aabb::EMPTY,
+            Aabb {
+                min: Vec3::ZERO,
+                max: Vec3::ONE,
+            },
+            Aabb::EMPTY,
+        ];
+        for bounds in [spread, identical, flat, with_empty] {
+            check(&build_binary(&bounds), &bounds);
+        }
+    }
+}
