@@ -22,7 +22,7 @@ pub struct Primitive {
 }
 
 /// All primitives of a scene behind a BVH.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct Geometry {
     prims: Vec<Primitive>,
     /// Meshes, for shading normals and texture coordinates of triangles.

@@ -120,7 +120,7 @@ impl AreaLight {
         };
         let d = y - at.p;
         let dist2 = d.length_squared();
-        if !(dist2 > 0.0) {
+        if dist2.is_nan() || dist2 <= 0.0 {
             return None;
         }
         let distance = dist2.sqrt();

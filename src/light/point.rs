@@ -20,7 +20,7 @@ impl PointLight {
     pub fn sample(&self, at: &ShadingPoint) -> Option<LightSample> {
         let d = self.position - at.p;
         let dist2 = d.length_squared();
-        if !(dist2 > 0.0) {
+        if dist2.is_nan() || dist2 <= 0.0 {
             return None;
         }
         let distance = dist2.sqrt();
