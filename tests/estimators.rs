@@ -141,9 +141,11 @@ fn blocks(film: &Film) -> Vec<(f64, f64)> {
 }
 
 #[test]
-#[ignore = "open (issue 2): hemisphere and bsdf blocks on the Phong n=1000 sphere sit 4-5 standard errors above the light reference; run with --ignored while investigating"]
 fn all_estimators_agree_on_the_assignment_scene() {
-    let reference = blocks(&render_assignment(EstimatorKind::Light, 16384, 1));
+    // The reference is BSDF-sampled: a light-sampled reference is heavy-tailed on the
+    // Phong n = 1000 lobe (rare large f), its sample variance underestimates the error, and
+    // sharp-lobe blocks then sit 4-5 "standard errors" away from every directional estimator.
+    let reference = blocks(&render_assignment(EstimatorKind::Bsdf, 16384, 1));
     let mut failures = Vec::new();
     for kind in EstimatorKind::ALL {
         let spp = if kind == EstimatorKind::Light {
