@@ -18,6 +18,9 @@
 //! | [`cli`] | one file per subcommand |
 #![warn(missing_docs)]
 
+#[macro_use]
+mod names;
+
 pub mod bsdf;
 pub mod cli;
 pub mod geometry;

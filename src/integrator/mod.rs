@@ -7,9 +7,6 @@
 mod directional;
 mod light;
 
-use std::fmt;
-use std::str::FromStr;
-
 use glam::Vec3;
 
 use crate::bsdf::Bsdf;
@@ -20,59 +17,19 @@ use crate::math::Spectrum;
 use crate::sampling::Uniform;
 use crate::scene::Scene;
 
-/// The direct-lighting strategy, by CLI name.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum EstimatorKind {
-    /// Uniform directions by (z, φ), weight 2π.
-    Hemisphere,
-    /// Uniform directions by rejection from the cube [-1, 1]³.
-    HemisphereRejection,
-    /// Cosine-weighted directions (Malley's method).
-    Cosine,
-    /// The BSDF's own `sample`.
-    Bsdf,
-    /// A point on a light (area form), one shadow ray.
-    Light,
-}
-
-impl EstimatorKind {
-    /// Every estimator, in CLI order.
-    pub const ALL: [EstimatorKind; 5] = [
-        EstimatorKind::Hemisphere,
-        EstimatorKind::HemisphereRejection,
-        EstimatorKind::Cosine,
-        EstimatorKind::Bsdf,
-        EstimatorKind::Light,
-    ];
-
-    /// CLI name.
-    pub fn name(self) -> &'static str {
-        match self {
-            EstimatorKind::Hemisphere => "hemisphere",
-            EstimatorKind::HemisphereRejection => "hemisphere-rejection",
-            EstimatorKind::Cosine => "cosine",
-            EstimatorKind::Bsdf => "bsdf",
-            EstimatorKind::Light => "light",
-        }
-    }
-}
-
-impl fmt::Display for EstimatorKind {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for EstimatorKind {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        EstimatorKind::ALL
-            .into_iter()
-            .find(|k| k.name() == s)
-            .ok_or_else(|| {
-                let known: Vec<_> = EstimatorKind::ALL.iter().map(|k| k.name()).collect();
-                format!("unknown estimator \"{s}\" (known: {})", known.join(", "))
-            })
+named_enum! {
+    /// The direct-lighting strategy, by CLI name.
+    pub enum EstimatorKind: "estimator" {
+        /// Uniform directions by (z, φ), weight 2π.
+        Hemisphere => "hemisphere",
+        /// Uniform directions by rejection from the cube [-1, 1]³.
+        HemisphereRejection => "hemisphere-rejection",
+        /// Cosine-weighted directions (Malley's method).
+        Cosine => "cosine",
+        /// The BSDF's own `sample`.
+        Bsdf => "bsdf",
+        /// A point on a light (area form), one shadow ray.
+        Light => "light",
     }
 }
 

@@ -1,9 +1,6 @@
 //! Diffuse area emitters and their sampling strategies (area form of the rendering
 //! integral: G·V·Le over the light's surface).
 
-use std::fmt;
-use std::str::FromStr;
-
 use glam::{Vec2, Vec3};
 
 use super::{LightSample, ShadingPoint, area_to_solid_angle};
@@ -11,45 +8,12 @@ use crate::geometry::Shape;
 use crate::math::{PI, Spectrum, spectrum::luminance};
 use crate::sampling::warp::{square_to_uniform_disk_concentric, square_to_uniform_sphere};
 
-/// How an area light draws its samples. Named as on the command line.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum LightSampling {
-    /// Uniform over the shape's area (lecture p₁ = 1/A), with horizon rejection before
-    /// the shadow ray.
-    Area,
-}
-
-impl LightSampling {
-    /// Every strategy, in CLI order.
-    pub const ALL: [LightSampling; 1] = [LightSampling::Area];
-
-    /// CLI name.
-    pub fn name(self) -> &'static str {
-        match self {
-            LightSampling::Area => "area",
-        }
-    }
-}
-
-impl fmt::Display for LightSampling {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for LightSampling {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        LightSampling::ALL
-            .into_iter()
-            .find(|k| k.name() == s)
-            .ok_or_else(|| {
-                let known: Vec<_> = LightSampling::ALL.iter().map(|k| k.name()).collect();
-                format!(
-                    "unknown light sampling \"{s}\" (known: {})",
-                    known.join(", ")
-                )
-            })
+named_enum! {
+    /// How an area light draws its samples. Named as on the command line.
+    pub enum LightSampling: "light sampling" {
+        /// Uniform over the shape's area (lecture p₁ = 1/A), with horizon rejection before
+        /// the shadow ray.
+        Area => "area",
     }
 }
 

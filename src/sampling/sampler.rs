@@ -4,9 +4,6 @@
 //! Every stream is derived from (seed, pixel, sample index) alone, so an image is the
 //! same whatever the thread count or the split into passes.
 
-use std::fmt;
-use std::str::FromStr;
-
 use glam::Vec2;
 
 use super::rng::{Rng32, hash_words, mix64};
@@ -31,51 +28,15 @@ impl Uniform for Rng32 {
     }
 }
 
-/// Which sampler a render uses; parsed from and shown as its CLI name.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum SamplerKind {
-    /// Independent uniform numbers from PCG32.
-    Independent,
-    /// Jittered strata in every dimension, decorrelated across dimensions by permutation.
-    Stratified,
-    /// Owen-scrambled Sobol points (Burley 2020, "Practical Hash-based Owen Scrambling").
-    Sobol,
-}
-
-impl SamplerKind {
-    /// Every sampler, in the order the CLI lists them.
-    pub const ALL: [SamplerKind; 3] = [
-        SamplerKind::Independent,
-        SamplerKind::Stratified,
-        SamplerKind::Sobol,
-    ];
-
-    /// The CLI name.
-    pub fn name(self) -> &'static str {
-        match self {
-            SamplerKind::Independent => "independent",
-            SamplerKind::Stratified => "stratified",
-            SamplerKind::Sobol => "sobol",
-        }
-    }
-}
-
-impl fmt::Display for SamplerKind {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for SamplerKind {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        SamplerKind::ALL
-            .into_iter()
-            .find(|k| k.name() == s)
-            .ok_or_else(|| {
-                let known: Vec<_> = SamplerKind::ALL.iter().map(|k| k.name()).collect();
-                format!("unknown sampler \"{s}\" (known: {})", known.join(", "))
-            })
+named_enum! {
+    /// Which sampler a render uses; parsed from and shown as its CLI name.
+    pub enum SamplerKind: "sampler" {
+        /// Independent uniform numbers from PCG32.
+        Independent => "independent",
+        /// Jittered strata in every dimension, decorrelated across dimensions by permutation.
+        Stratified => "stratified",
+        /// Owen-scrambled Sobol points (Burley 2020, "Practical Hash-based Owen Scrambling").
+        Sobol => "sobol",
     }
 }
 

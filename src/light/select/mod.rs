@@ -6,9 +6,6 @@ mod uniform;
 
 pub use uniform::UniformSelector;
 
-use std::fmt;
-use std::str::FromStr;
-
 use super::ShadingPoint;
 
 /// A chosen light, its probability, and `u` rescaled to [0, 1) so it can be used again.
@@ -30,44 +27,11 @@ pub trait LightSelector {
     fn pmf(&self, at: &ShadingPoint, index: usize) -> f32;
 }
 
-/// Light selection strategy, by CLI name.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum LightSelect {
-    /// i = ⌊ξ·n⌋ (lecture solution #1).
-    Uniform,
-}
-
-impl LightSelect {
-    /// Every strategy, in CLI order.
-    pub const ALL: [LightSelect; 1] = [LightSelect::Uniform];
-
-    /// CLI name.
-    pub fn name(self) -> &'static str {
-        match self {
-            LightSelect::Uniform => "uniform",
-        }
-    }
-}
-
-impl fmt::Display for LightSelect {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for LightSelect {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        LightSelect::ALL
-            .into_iter()
-            .find(|k| k.name() == s)
-            .ok_or_else(|| {
-                let known: Vec<_> = LightSelect::ALL.iter().map(|k| k.name()).collect();
-                format!(
-                    "unknown light selection \"{s}\" (known: {})",
-                    known.join(", ")
-                )
-            })
+named_enum! {
+    /// Light selection strategy, by CLI name.
+    pub enum LightSelect: "light selection" {
+        /// i = ⌊ξ·n⌋ (lecture solution #1).
+        Uniform => "uniform",
     }
 }
 

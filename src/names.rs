@@ -1,0 +1,40 @@
+//! One definition of a strategy enum and its CLI names: `ALL`, `name`, `Display` and
+//! `FromStr` come from a single list, so no second list is kept by hand (STYLE: names).
+
+/// Declares a `Copy` enum whose variants each have one CLI name.
+/// `named_enum!(/// doc  pub enum Kind: "what" { /// doc  A => "a", ... })`.
+macro_rules! named_enum {
+    ($(#[$meta:meta])* $vis:vis enum $ty:ident : $what:literal {
+        $($(#[$vmeta:meta])* $variant:ident => $text:literal),+ $(,)?
+    }) => {
+        $(#[$meta])*
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+        $vis enum $ty { $($(#[$vmeta])* $variant),+ }
+
+        impl $ty {
+            /// Every value, in CLI order.
+            pub const ALL: [$ty; [$($text),+].len()] = [$($ty::$variant),+];
+
+            /// The CLI name.
+            pub fn name(self) -> &'static str {
+                match self { $($ty::$variant => $text),+ }
+            }
+        }
+
+        impl std::fmt::Display for $ty {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str(self.name())
+            }
+        }
+
+        impl std::str::FromStr for $ty {
+            type Err = String;
+            fn from_str(s: &str) -> Result<Self, String> {
+                Self::ALL.into_iter().find(|k| k.name() == s).ok_or_else(|| {
+                    let known: Vec<_> = Self::ALL.iter().map(|k| k.name()).collect();
+                    format!("unknown {} \"{s}\" (known: {})", $what, known.join(", "))
+                })
+            }
+        }
+    };
+}
