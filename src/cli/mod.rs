@@ -1,6 +1,7 @@
 //! The command line: parses arguments and calls the library, one file per subcommand.
 
 mod args;
+mod bench;
 mod diff;
 mod render;
 mod scenes;
@@ -57,6 +58,8 @@ enum Command {
     Scenes,
     /// Draw a named warp's samples beside its histograms and run its chi-square test.
     Warp(warp::WarpArgs),
+    /// Throughput figures: rays/s, BVH build time, samples/s per estimator (medians).
+    Bench(bench::BenchArgs),
 }
 
 /// Runs the CLI on the process arguments and returns the exit code.
@@ -73,6 +76,7 @@ pub fn main() -> i32 {
         Command::Diff(a) => diff::run(&a),
         Command::Scenes => scenes::run(),
         Command::Warp(a) => warp::run(&a).map_err(CliError::input),
+        Command::Bench(a) => bench::run(&a),
     };
     match result {
         Ok(()) => 0,
