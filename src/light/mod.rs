@@ -3,6 +3,7 @@
 //! and densities at a shading point.
 
 mod area;
+pub mod environment;
 mod point;
 pub mod select;
 
