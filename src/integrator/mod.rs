@@ -70,7 +70,7 @@ impl Estimator {
     /// illumination at the first hit.
     pub fn radiance(&self, scene: &Scene, ray: &Ray, src: &mut impl Uniform) -> Spectrum {
         let Some(hit) = scene.geometry.intersect(ray, f32::INFINITY) else {
-            return Spectrum::ZERO;
+            return scene.escaped(ray.d.normalize()); // the background: the environment
         };
         let w_out = -ray.d.normalize();
         emitted_at(scene, &hit, w_out) + self.direct(scene, &hit, w_out, src)

@@ -27,8 +27,8 @@ pub struct SkyParameters {
 }
 
 impl Default for SkyParameters {
-    /// A sun 35° above the horizon of angular radius 1.5°, whose irradiance on a plane
-    /// facing it is about 15× the sky's.
+    /// A sun 35° above the horizon of angular radius 1.5°, whose irradiance on the
+    /// ground is about 3× the sky's while it covers 1/20000 of the sphere.
     fn default() -> Self {
         let elevation = 35f32.to_radians();
         let azimuth = 40f32.to_radians();
@@ -40,7 +40,7 @@ impl Default for SkyParameters {
                 -elevation.cos() * azimuth.cos(),
             ),
             sun_radius_degrees: 1.5,
-            sun_radiance: Spectrum::new(9000.0, 8200.0, 7000.0),
+            sun_radiance: Spectrum::new(3000.0, 2750.0, 2350.0),
             zenith: Spectrum::new(0.15, 0.25, 0.55),
             horizon: Spectrum::new(0.55, 0.6, 0.7),
             ground: Spectrum::new(0.08, 0.07, 0.06),

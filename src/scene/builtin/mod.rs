@@ -1,6 +1,7 @@
 //! Built-in scenes: each is a figure the lecture draws, so students can reproduce it.
 
 mod assignment;
+mod envmap;
 mod veach_mis;
 
 use super::{Scene, SceneError};
@@ -26,6 +27,11 @@ pub const BUILTINS: &[Builtin] = &[
         name: "veach-mis",
         description: "Veach's four plates of rising gloss (Phong n = 30 … 30000) and four equal-power sphere lights: light vs BSDF sampling vs MIS",
         build: veach_mis::build,
+    },
+    Builtin {
+        name: "envmap",
+        description: "diffuse and glossy spheres under a procedural sky with a small, very bright sun: environment-map sampling",
+        build: envmap::build,
     },
 ];
 
