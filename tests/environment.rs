@@ -181,3 +181,49 @@ fn envmap_light_bsdf_and_mis_agree() {
         "blocks differ by ≥ 4 standard errors: {failures:?}"
     );
 }
+
+#[test]
+fn environment_maps_load_from_exr_and_hdr() {
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("envmaps");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let (w, h) = (8u32, 4u32);
+    let value = |x: u32, y: u32| Spectrum::new(x as f32 * 0.5, y as f32 + 0.25, 2.0);
+    let mut film = Film::new(w, h);
+    for y in 0..h {
+        for x in 0..w {
+            film.pixels[(y * w + x) as usize].add(value(x, y));
+        }
+    }
+    let exr = dir.join("map.exr");
+    lightlab::image::io::write_film(&film, &exr, 1.0).expect("write exr");
+    let hdr = dir.join("map.hdr");
+    let pixels: Vec<image::Rgb<f32>> = (0..h)
+        .flat_map(|y| (0..w).map(move |x| image::Rgb(value(x, y).to_array())))
+        .collect();
+    let file = std::fs::File::create(&hdr).expect("hdr file");
+    image::codecs::hdr::HdrEncoder::new(file)
+        .encode(&pixels, w as usize, h as usize)
+        .expect("write hdr");
+    for (path, tolerance) in [(exr, 1e-6), (hdr, 1e-2)] {
+        let env = Environment::from_file(&path, 2.0, Mat3::IDENTITY).expect("load");
+        // Texel (3, 1) sits at u = 3/8, v = 1/3: direction (sin θ sin φ, cos θ, −sin θ cos φ).
+        let (theta, phi) = (
+            std::f32::consts::PI / 3.0,
+            2.0 * std::f32::consts::PI * 3.0 / 8.0,
+        );
+        let d = Vec3::new(
+            theta.sin() * phi.sin(),
+            theta.cos(),
+            -theta.sin() * phi.cos(),
+        );
+        let got = env.eval(d);
+        let want = value(3, 1) * 2.0;
+        assert!(
+            (got - want).abs().max_element() <= tolerance * want.max_element() * 4.0,
+            "{}: {got} vs {want}",
+            path.display()
+        );
+    }
+    let missing = Environment::from_file(&dir.join("missing.exr"), 1.0, Mat3::IDENTITY);
+    assert!(missing.unwrap_err().contains("missing.exr"));
+}

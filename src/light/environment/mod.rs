@@ -196,6 +196,15 @@ impl Environment {
         })
     }
 
+    /// An environment map from a lat-long image file (`.exr`, `.hdr`, `.pfm`, `.png`).
+    pub fn from_file(path: &std::path::Path, scale: f32, to_world: Mat3) -> Result<Self, String> {
+        let img = crate::image::io::read_image(path).map_err(|e| e.to_string())?;
+        let image = LatLongImage::new(img.width as usize, img.height as usize, img.rgb)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        Environment::from_image(image, scale, to_world)
+            .map_err(|e| format!("{}: {e}", path.display()))
+    }
+
     /// Radiance arriving from world direction `w` (unit, pointing away from the scene).
     #[inline]
     pub fn eval(&self, w: Vec3) -> Spectrum {
