@@ -3,10 +3,14 @@
 //! and densities at a shading point.
 
 mod area;
+mod bounds;
+pub mod cone;
+mod estimate;
 mod point;
 pub mod select;
 
 pub use area::{AreaLight, LightSampling};
+pub use bounds::LightBounds;
 pub use point::PointLight;
 
 use glam::{Vec2, Vec3};

@@ -81,12 +81,12 @@ pub struct RenderSettings {
 
 impl RenderSettings {
     /// The defaults for `scene`: the light estimator with uniform-area light sampling,
-    /// uniform selection and the Sobol sampler at the scene's spp.
+    /// light-BVH selection and the Sobol sampler at the scene's spp.
     pub fn for_scene(scene: &Scene) -> RenderSettings {
         RenderSettings {
             estimator: EstimatorKind::Light,
             light_sampling: LightSampling::Area,
-            light_select: LightSelect::Uniform,
+            light_select: LightSelect::Bvh,
             sampler: SamplerKind::Sobol,
             spp: scene.spp,
             seed: 0,

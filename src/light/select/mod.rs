@@ -1,12 +1,23 @@
 //! Choosing one light among many (lecture: "we can unite all light sources to a single
 //! large one"): a selector draws a light with a probability and hands back the random
 //! number rescaled, so the same number can be used again.
+//!
+//! Four selectors: `uniform` (solution #1), `power` (solution #2), `adaptive` (solution
+//! #3, O(n) per point, the reference) and `bvh` (a light tree after Conty Estevez &
+//! Kulla 2018, O(log n)). Each `pmf` returns exactly the probability `select` used, so
+//! MIS can weight BSDF-sampled hits with it.
 
+mod adaptive;
+mod bvh;
+mod power;
 mod uniform;
 
+pub use adaptive::AdaptiveSelector;
+pub use bvh::BvhSelector;
+pub use power::PowerSelector;
 pub use uniform::UniformSelector;
 
-use super::ShadingPoint;
+use super::{Light, ShadingPoint};
 
 /// A chosen light, its probability, and `u` rescaled to [0, 1) so it can be used again.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -32,6 +43,13 @@ named_enum! {
     pub enum LightSelect: "light selection" {
         /// i = ⌊ξ·n⌋ (lecture solution #1).
         Uniform => "uniform",
+        /// ∝ emitted power Φ, by an alias table (lecture solution #2).
+        Power => "power",
+        /// ∝ a per-point contribution estimate with a floor, O(n) (lecture solution #3).
+        Adaptive => "adaptive",
+        /// A light BVH with importance from distance and orientation bounds, O(log n)
+        /// (Conty Estevez & Kulla 2018).
+        Bvh => "bvh",
     }
 }
 
@@ -40,13 +58,25 @@ named_enum! {
 pub enum Selector {
     /// Uniform choice.
     Uniform(UniformSelector),
+    /// By power.
+    Power(PowerSelector),
+    /// Per-point adaptive.
+    Adaptive(AdaptiveSelector),
+    /// Light BVH.
+    Bvh(BvhSelector),
 }
 
 impl Selector {
-    /// Builds the selector `kind` over lights with the given powers.
-    pub fn new(kind: LightSelect, powers: &[f32]) -> Selector {
+    /// Builds the selector `kind` over the scene's `lights` (indices into that slice).
+    pub fn new(kind: LightSelect, lights: &[Light]) -> Selector {
         match kind {
-            LightSelect::Uniform => Selector::Uniform(UniformSelector::new(powers.len())),
+            LightSelect::Uniform => Selector::Uniform(UniformSelector::new(lights.len())),
+            LightSelect::Power => {
+                let powers: Vec<f32> = lights.iter().map(|l| l.power()).collect();
+                Selector::Power(PowerSelector::new(&powers))
+            }
+            LightSelect::Adaptive => Selector::Adaptive(AdaptiveSelector::new(lights)),
+            LightSelect::Bvh => Selector::Bvh(BvhSelector::new(lights)),
         }
     }
 }
@@ -56,6 +86,9 @@ impl LightSelector for Selector {
     fn select(&self, at: &ShadingPoint, u: f32) -> Option<Selection> {
         match self {
             Selector::Uniform(s) => s.select(at, u),
+            Selector::Power(s) => s.select(at, u),
+            Selector::Adaptive(s) => s.select(at, u),
+            Selector::Bvh(s) => s.select(at, u),
         }
     }
 
@@ -63,6 +96,9 @@ impl LightSelector for Selector {
     fn pmf(&self, at: &ShadingPoint, index: usize) -> f32 {
         match self {
             Selector::Uniform(s) => s.pmf(at, index),
+            Selector::Power(s) => s.pmf(at, index),
+            Selector::Adaptive(s) => s.pmf(at, index),
+            Selector::Bvh(s) => s.pmf(at, index),
         }
     }
 }

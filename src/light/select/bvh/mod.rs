@@ -1,0 +1,179 @@
+//! Light BVH selection (Conty Estevez & Kulla 2018, "Importance Sampling of Many Lights
+//! with Adaptive Tree Splitting"; the design of pbrt-v4's `BVHLightSampler`, §12.6.3):
+//! a binary tree over the lights whose nodes carry [`LightBounds`]. Selection walks from
+//! the root, choosing each child with probability proportional to its importance at the
+//! shading point and reusing the one random number; the pmf is the product of the
+//! choices. `pmf` re-walks the same path, found from the light's bit trail, and so
+//! returns exactly the probability `select` used. O(depth) = O(log n) for both.
+
+mod build;
+
+use build::{BuildLight, Builder};
+
+use super::{LightSelector, Selection};
+use crate::light::{Light, LightBounds, ShadingPoint};
+use crate::sampling::sampler::ONE_MINUS_EPSILON;
+
+/// A node: its bounds and either its second child (the first follows it in the array)
+/// or, in a leaf, the light.
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    bounds: LightBounds,
+    second_or_light: u32,
+    leaf: bool,
+}
+
+/// The path from the root to a light's leaf: bit k is the child (0 first, 1 second)
+/// taken at depth k.
+#[derive(Clone, Copy, Debug, Default)]
+struct Trail {
+    bits: u64,
+    depth: u8,
+}
+
+/// Marks a light outside the tree (it emits nothing and is never chosen).
+const NOT_IN_TREE: u8 = u8::MAX;
+
+/// The light BVH selector.
+#[derive(Clone, Debug)]
+pub struct BvhSelector {
+    nodes: Vec<Node>,
+    trails: Vec<Trail>,
+}
+
+impl BvhSelector {
+    /// Builds the tree over `lights` with the SAOH; lights with zero power stay out of
+    /// it (pmf 0).
+    pub fn new(lights: &[Light]) -> BvhSelector {
+        let mut items: Vec<BuildLight> = lights
+            .iter()
+            .enumerate()
+            .map(|(index, l)| {
+                let bounds = l.bounds();
+                BuildLight {
+                    index,
+                    bounds,
+                    centroid: bounds.aabb.centroid(),
+                }
+            })
+            .filter(|l| l.bounds.phi > 0.0 && l.centroid.is_finite())
+            .collect();
+        let mut builder = Builder {
+            nodes: Vec::with_capacity(2 * items.len()),
+            trails: vec![
+                Trail {
+                    bits: 0,
+                    depth: NOT_IN_TREE,
+                };
+                lights.len()
+            ],
+        };
+        if !items.is_empty() {
+            builder.build(&mut items, 0, 0);
+        }
+        BvhSelector {
+            nodes: builder.nodes,
+            trails: builder.trails,
+        }
+    }
+
+    /// Number of nodes (2n − 1 for n lights in the tree).
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Depth of the deepest leaf.
+    pub fn depth(&self) -> usize {
+        self.trails
+            .iter()
+            .filter(|t| t.depth != NOT_IN_TREE)
+            .map(|t| t.depth as usize)
+            .max()
+            .unwrap_or(0)
+    }
+
+    /// The probabilities of the two children of interior node `i` at `at`, as
+    /// (child indices, importances); both importances zero means a dead end.
+    #[inline]
+    fn children(&self, i: usize, at: &ShadingPoint) -> ([usize; 2], [f32; 2]) {
+        let c = [i + 1, self.nodes[i].second_or_light as usize];
+        (
+            c,
+            [
+                self.nodes[c[0]].bounds.importance(at),
+                self.nodes[c[1]].bounds.importance(at),
+            ],
+        )
+    }
+}
+
+/// Probability of taking child `k` given both importances (the one expression `select`
+/// and `pmf` share, so both multiply the same numbers).
+#[inline]
+fn child_probability(importance: [f32; 2], k: usize) -> f32 {
+    importance[k] / (importance[0] + importance[1])
+}
+
+impl LightSelector for BvhSelector {
+    fn select(&self, at: &ShadingPoint, u: f32) -> Option<Selection> {
+        let root = self.nodes.first()?;
+        if root.leaf {
+            // One light: take it if it can contribute at all.
+            return (root.bounds.importance(at) > 0.0).then_some(Selection {
+                index: root.second_or_light as usize,
+                pmf: 1.0,
+                u_reused: u.clamp(0.0, ONE_MINUS_EPSILON),
+            });
+        }
+        let mut u = u.clamp(0.0, ONE_MINUS_EPSILON);
+        let mut pmf = 1.0f32;
+        let mut i = 0;
+        while !self.nodes[i].leaf {
+            let (child, importance) = self.children(i, at);
+            if !(importance[0] + importance[1] > 0.0) {
+                return None;
+            }
+            let p0 = child_probability(importance, 0);
+            let k = if u < p0 {
+                u /= p0;
+                0
+            } else {
+                u = (u - p0) / (1.0 - p0);
+                1
+            };
+            u = u.clamp(0.0, ONE_MINUS_EPSILON);
+            pmf *= child_probability(importance, k);
+            i = child[k];
+        }
+        Some(Selection {
+            index: self.nodes[i].second_or_light as usize,
+            pmf,
+            u_reused: u,
+        })
+    }
+
+    fn pmf(&self, at: &ShadingPoint, index: usize) -> f32 {
+        let Some(trail) = self.trails.get(index).filter(|t| t.depth != NOT_IN_TREE) else {
+            return 0.0;
+        };
+        if self.nodes[0].leaf {
+            return if self.nodes[0].bounds.importance(at) > 0.0 {
+                1.0
+            } else {
+                0.0
+            };
+        }
+        let mut pmf = 1.0f32;
+        let mut i = 0;
+        for depth in 0..trail.depth {
+            let (child, importance) = self.children(i, at);
+            if !(importance[0] + importance[1] > 0.0) {
+                return 0.0;
+            }
+            let k = ((trail.bits >> depth) & 1) as usize;
+            pmf *= child_probability(importance, k);
+            i = child[k];
+        }
+        pmf
+    }
+}
