@@ -101,6 +101,12 @@ impl LightBounds {
         if cos_pi <= 0.0 {
             return 0.0;
         }
+        // Exact horizon test of the box itself (the bounding sphere above is looser):
+        // max over the box of n·(x − p) = n·(c − p) + Σ_k |n_k|·half-extent_k.
+        let half = 0.5 * self.aabb.extent();
+        if at.n.dot(pc - at.p) + at.n.abs().dot(half) <= 0.0 {
+            return 0.0;
+        }
         let importance = self.phi * cos_p / d2 * cos_pi;
         if importance.is_finite() {
             importance.max(0.0)

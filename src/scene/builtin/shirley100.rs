@@ -3,8 +3,8 @@
 //! Calculations", ACM TOG 15(1)) that the lecture shows at 49 samples per pixel.
 //!
 //! The luminaires are spheres and quads placed by a fixed random stream: small spheres
-//! hovering just above the floor and the objects (close to surfaces), panels on the
-//! floor facing sideways, ceiling panels facing down, and large spheres far away in the
+//! hovering just above the floor and the objects (close to surfaces), panels just above
+//! the floor facing sideways, ceiling panels facing down, and large spheres far away in the
 //! background. Radiances are spread log-uniformly over two orders of magnitude.
 //! `many-lights?n=N` is the same generator with N luminaires over an area grown with N
 //! (same density), for scaling tests.
@@ -92,8 +92,8 @@ fn add_floor_and_objects(b: &mut SceneBuilder, half: f32) {
     let stone = b.material(Material::Diffuse(Diffuse {
         reflectance: Spectrum::new(0.45, 0.55, 0.6),
     }));
-    add_box(b, Vec3::new(-3.4, 0.0, -2.2), Vec3::new(-1.8, 1.6, -0.8), stone);
-    add_box(b, Vec3::new(2.0, 0.0, -3.6), Vec3::new(3.0, 2.6, -2.6), clay);
+    add_box(b, BOXES[0].0, BOXES[0].1, stone);
+    add_box(b, BOXES[1].0, BOXES[1].1, clay);
     let glossy = |kd: Spectrum, exponent: f32| {
         Material::Phong(Phong {
             kd,
@@ -101,15 +101,41 @@ fn add_floor_and_objects(b: &mut SceneBuilder, half: f32) {
             exponent,
         })
     };
-    let spheres = [
-        (Vec3::new(0.0, 0.9, -1.5), 0.9, b.material(glossy(Spectrum::new(0.15, 0.2, 0.45), 60.0))),
-        (Vec3::new(-0.9, 0.4, 1.6), 0.4, clay),
-        (Vec3::new(1.7, 0.55, 0.6), 0.55, b.material(glossy(Spectrum::new(0.5, 0.45, 0.1), 300.0))),
-        (Vec3::new(-4.5, 0.7, 1.0), 0.7, stone),
+    let materials = [
+        b.material(glossy(Spectrum::new(0.15, 0.2, 0.45), 60.0)),
+        clay,
+        b.material(glossy(Spectrum::new(0.5, 0.45, 0.1), 300.0)),
+        stone,
     ];
-    for (center, radius, m) in spheres {
+    for ((center, radius), m) in SPHERES.into_iter().zip(materials) {
         b.sphere(center, radius, m, None);
     }
+}
+
+/// The objects' boxes (min, max).
+const BOXES: [(Vec3, Vec3); 2] = [
+    (Vec3::new(-3.4, 0.0, -2.2), Vec3::new(-1.8, 1.6, -0.8)),
+    (Vec3::new(2.0, 0.0, -3.6), Vec3::new(3.0, 2.6, -2.6)),
+];
+
+/// The objects' spheres (centre, radius).
+const SPHERES: [(Vec3, f32); 4] = [
+    (Vec3::new(0.0, 0.9, -1.5), 0.9),
+    (Vec3::new(-0.9, 0.4, 1.6), 0.4),
+    (Vec3::new(1.7, 0.55, 0.6), 0.55),
+    (Vec3::new(-4.5, 0.7, 1.0), 0.7),
+];
+
+/// Whether floor position (x, z) keeps `margin` away from every object's footprint: a
+/// luminaire touching a surface makes G (and the variance of area sampling) unbounded.
+fn clear_of_objects(x: f32, z: f32, margin: f32) -> bool {
+    let boxes = BOXES.iter().all(|(lo, hi)| {
+        x < lo.x - margin || x > hi.x + margin || z < lo.z - margin || z > hi.z + margin
+    });
+    let spheres = SPHERES
+        .iter()
+        .all(|(c, r)| (x - c.x).hypot(z - c.z) > r + margin);
+    boxes && spheres
 }
 
 /// An axis-aligned box on [min, max] without its bottom face, normals outward.
@@ -143,22 +169,30 @@ fn add_luminaire(b: &mut SceneBuilder, rng: &mut Rng32, i: usize, half: f32, mat
     // Log-uniform over two decades: L = L₀ · 100^ξ.
     let strength = BASE_RADIANCE * 100f32.powf(u());
     let emission = Some(Emission::new(Spectrum::new(c[0], c[1], c[2]) * strength));
-    let (x, z) = ((2.0 * u() - 1.0) * half, (2.0 * u() - 1.0) * half * 0.8 - 1.0);
+    // Floor position, drawn again (a few times) when it lands on an object.
+    let mut xz = || ((2.0 * u() - 1.0) * half, (2.0 * u() - 1.0) * half * 0.8 - 1.0);
+    let (mut x, mut z) = xz();
+    for _ in 0..32 {
+        if clear_of_objects(x, z, 0.45) {
+            break;
+        }
+        (x, z) = xz();
+    }
     match i % 10 {
         0..=3 => {
             // A small sphere close to the floor.
             let r = 0.04 + 0.1 * u();
-            let y = r + 0.05 + 0.7 * u() * u();
+            let y = r + 0.1 + 0.7 * u() * u();
             b.sphere(Vec3::new(x, y, z), r, material, emission);
         }
         4 => {
-            // A panel standing on the floor, facing a random horizontal direction.
+            // A panel hovering just above the floor, facing a random horizontal direction.
             let phi = std::f32::consts::TAU * u();
             let facing = Vec3::new(phi.cos(), 0.0, phi.sin());
             let (w, h) = (0.2 + 0.3 * u(), 0.1 + 0.3 * u());
             let along = facing.cross(Vec3::Y) * w;
             b.rectangle(
-                Vec3::new(x, 0.02, z) - 0.5 * along,
+                Vec3::new(x, 0.15, z) - 0.5 * along,
                 Vec3::Y * h,
                 along,
                 material,
