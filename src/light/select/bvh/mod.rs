@@ -10,6 +10,7 @@ mod build;
 
 use build::{BuildLight, Builder};
 
+use super::adaptive::FLOOR;
 use super::{LightSelector, Selection};
 use crate::light::{Light, LightBounds, ShadingPoint};
 use crate::sampling::sampler::ONE_MINUS_EPSILON;
@@ -39,6 +40,7 @@ const NOT_IN_TREE: u8 = u8::MAX;
 pub struct BvhSelector {
     nodes: Vec<Node>,
     trails: Vec<Trail>,
+    lights: Vec<Light>,
 }
 
 impl BvhSelector {
@@ -74,6 +76,7 @@ impl BvhSelector {
         BvhSelector {
             nodes: builder.nodes,
             trails: builder.trails,
+            lights: lights.to_vec(),
         }
     }
 
@@ -92,18 +95,26 @@ impl BvhSelector {
             .unwrap_or(0)
     }
 
-    /// The probabilities of the two children of interior node `i` at `at`, as
-    /// (child indices, importances); both importances zero means a dead end.
+    /// Importance of node `i` at `at`: the bounds' importance m for a cluster; for a
+    /// single light, its contribution estimate e plus a floor, e + α·m (as the adaptive
+    /// selector, α = [`FLOOR`]), and zero only where m is (the light cannot contribute).
+    #[inline]
+    fn importance(&self, i: usize, at: &ShadingPoint) -> f32 {
+        let node = &self.nodes[i];
+        let m = node.bounds.importance(at);
+        if !node.leaf || m <= 0.0 {
+            return m;
+        }
+        let e = self.lights[node.second_or_light as usize].contribution_estimate(at);
+        e + FLOOR as f32 * m
+    }
+
+    /// The two children of interior node `i` and their importances at `at`; both
+    /// importances zero means a dead end.
     #[inline]
     fn children(&self, i: usize, at: &ShadingPoint) -> ([usize; 2], [f32; 2]) {
         let c = [i + 1, self.nodes[i].second_or_light as usize];
-        (
-            c,
-            [
-                self.nodes[c[0]].bounds.importance(at),
-                self.nodes[c[1]].bounds.importance(at),
-            ],
-        )
+        (c, [self.importance(c[0], at), self.importance(c[1], at)])
     }
 }
 
