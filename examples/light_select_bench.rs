@@ -6,8 +6,8 @@
 //!    high-spp reference, with the equal-time relMSE (relMSE · time / time of `bvh`,
 //!    since the error of an unbiased estimator falls as 1/spp).
 //!
-//! `cargo run --release --example light_select_bench [-- --quick]`; `--quick` skips the
-//! 10⁵ row and renders a cheaper reference. Writes PNGs to /tmp/light_select_bench/.
+//! `cargo run --release --example light_select_bench [-- scaling | shirley]` (each part
+//! about a minute on the shared 2-core machine). Writes PNGs to /tmp/light_select_bench/.
 
 use std::hint::black_box;
 use std::path::Path;
@@ -70,16 +70,11 @@ fn time_selector(s: &Selector, points: &[ShadingPoint], calls: usize) -> (f64, f
     (select_ns, pmf_ns)
 }
 
-fn scaling(quick: bool) {
+fn scaling() {
     println!("## Selection cost per sample (ns; select / pmf), many-lights?n=N\n");
     println!("| n | uniform | power | adaptive | bvh | bvh build ms | bvh depth |");
     println!("|---|---|---|---|---|---|---|");
-    let counts: &[usize] = if quick {
-        &[10, 100, 1000, 10_000]
-    } else {
-        &[10, 100, 1000, 10_000, 100_000]
-    };
-    for &n in counts {
+    for n in [10, 100, 1000, 10_000, 100_000] {
         let scene = builtin::build(&format!("many-lights?n={n}")).expect("scene");
         let points = shading_points(&scene, 256);
         let mut row = format!("| {n} |");
@@ -92,11 +87,11 @@ fn scaling(quick: bool) {
                 build_ms = start.elapsed().as_secs_f64() * 1e3;
                 depth = b.depth();
             }
-            // About 2·10⁷ light evaluations for the O(n) selector, 4·10⁵ calls otherwise.
+            // About 10⁷ light evaluations for the O(n) selector, 2·10⁵ calls otherwise.
             let calls = if kind == LightSelect::Adaptive {
-                (20_000_000 / n).clamp(50, 400_000)
+                (10_000_000 / n).clamp(50, 200_000)
             } else {
-                400_000
+                200_000
             };
             let (sel, pmf) = time_selector(&s, &points, calls);
             row += &format!(" {sel:.0} / {pmf:.0} |");
@@ -105,7 +100,7 @@ fn scaling(quick: bool) {
     }
 }
 
-fn shirley(quick: bool) {
+fn shirley() {
     let scene = builtin::build("shirley-100").expect("scene");
     let dir = Path::new("/tmp/light_select_bench");
     std::fs::create_dir_all(dir).expect("output directory");
@@ -119,7 +114,7 @@ fn shirley(quick: bool) {
         s.resolution = Some((w, h));
         s
     };
-    let ref_spp = if quick { 1024 } else { 4096 };
+    let ref_spp = 1024;
     let reference = render_quiet(&scene, &settings(LightSelect::Bvh, ref_spp, 1000));
     write_film(&reference.film, &dir.join("reference.png"), 0.0).expect("png");
     let ref_means = reference.film.means();
@@ -160,7 +155,10 @@ fn shirley(quick: bool) {
         write_film(&out.film, &dir.join(format!("{kind}.png")), 0.0).expect("png");
         rows.push((kind, e.rel_mse, e.mse, times[1]));
     }
-    let bvh_time = rows.iter().find(|r| r.0 == LightSelect::Bvh).map_or(1.0, |r| r.3);
+    let bvh_time = rows
+        .iter()
+        .find(|r| r.0 == LightSelect::Bvh)
+        .map_or(1.0, |r| r.3);
     let uniform_mse = rows[0].2;
     for (kind, rel, mse, t) in rows {
         println!(
@@ -169,11 +167,18 @@ fn shirley(quick: bool) {
             uniform_mse / mse
         );
     }
-    println!("\nBVH dead ends on shirley-100: P(select returns no light) = {lost:.4} averaged over {} camera points", points.len());
+    println!(
+        "\nBVH dead ends on shirley-100: P(select returns no light) = {lost:.4} averaged over {} camera points",
+        points.len()
+    );
 }
 
 fn main() {
-    let quick = std::env::args().any(|a| a == "--quick");
-    scaling(quick);
-    shirley(quick);
+    let part = std::env::args().nth(1);
+    if part.as_deref() != Some("shirley") {
+        scaling();
+    }
+    if part.as_deref() != Some("scaling") {
+        shirley();
+    }
 }

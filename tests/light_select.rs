@@ -30,10 +30,7 @@ fn points_through_camera(scene: &Scene, pixels: &[(f32, f32)]) -> Vec<ShadingPoi
     pixels
         .iter()
         .map(|&(fx, fy)| {
-            let ray = c.ray(glam::Vec2::new(
-                fx * c.width as f32,
-                fy * c.height as f32,
-            ));
+            let ray = c.ray(glam::Vec2::new(fx * c.width as f32, fy * c.height as f32));
             let hit = scene
                 .geometry
                 .intersect(&ray, f32::INFINITY)
@@ -184,7 +181,10 @@ fn check_scene(scene: &Scene, points: &[ShadingPoint], samples: usize, kinds: &[
     for &kind in kinds {
         let selector = Selector::new(kind, &scene.lights);
         for (k, at) in points.iter().enumerate() {
-            let name = format!("{}-{kind}-point{k}", scene.name.replace(['?', ':', '='], "_"));
+            let name = format!(
+                "{}-{kind}-point{k}",
+                scene.name.replace(['?', ':', '='], "_")
+            );
             let may_lose = kind == LightSelect::Bvh;
             let result = selection_chi2(&selector, at, scene.lights.len(), samples, may_lose)
                 .and_then(|r| judge(&name, &r, alpha));
@@ -201,7 +201,13 @@ fn selectors_agree_with_their_pmf_on_shirley_100() {
     let scene = builtin::build("shirley-100").expect("scene");
     let points = points_through_camera(
         &scene,
-        &[(0.5, 0.8), (0.2, 0.6), (0.8, 0.9), (0.33, 0.45), (0.5, 0.45)],
+        &[
+            (0.5, 0.8),
+            (0.2, 0.6),
+            (0.8, 0.9),
+            (0.33, 0.45),
+            (0.5, 0.45),
+        ],
     );
     check_scene(&scene, &points, 100_000, &LightSelect::ALL);
 }
@@ -311,7 +317,11 @@ fn all_selectors_render_the_same_shirley_100() {
     let reference = blocks(&render_shirley(LightSelect::Bvh, 4096, 1));
     let mut results = Vec::new();
     for select in LightSelect::ALL {
-        let spp = if select == LightSelect::Adaptive { 512 } else { 1024 };
+        let spp = if select == LightSelect::Adaptive {
+            512
+        } else {
+            1024
+        };
         let test = blocks(&render_shirley(select, spp, 7));
         let worst = test
             .iter()
@@ -319,7 +329,11 @@ fn all_selectors_render_the_same_shirley_100() {
             .map(|(a, r)| (a.0 - r.0) / (a.1 + r.1).sqrt().max(1e-9))
             .fold(0f64, |w, z| if z.abs() > w.abs() { z } else { w });
         println!("{select:>10}: worst block z = {worst:+.2}");
-        let zs: Vec<String> = test.iter().zip(&reference).map(|(a, r)| format!("{:+.1}", (a.0 - r.0) / (a.1 + r.1).sqrt())).collect();
+        let zs: Vec<String> = test
+            .iter()
+            .zip(&reference)
+            .map(|(a, r)| format!("{:+.1}", (a.0 - r.0) / (a.1 + r.1).sqrt()))
+            .collect();
         println!("{}", zs.join(" "));
         results.push((select, worst));
     }

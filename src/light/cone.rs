@@ -123,7 +123,12 @@ mod tests {
             (Vec3::Z, 0.9, Vec3::new(0.3, 0.2, 0.9), 0.99),
             (Vec3::Z, 0.0, -Vec3::Z, 0.5),
             (Vec3::Y, 1.0, Vec3::Y, 1.0),
-            (Vec3::new(1.0, 1.0, 0.0), 0.7, Vec3::new(-1.0, 0.2, 0.1), 0.95),
+            (
+                Vec3::new(1.0, 1.0, 0.0),
+                0.7,
+                Vec3::new(-1.0, 0.2, 0.1),
+                0.95,
+            ),
         ];
         for (wa, ca, wb, cb) in cases {
             let a = DirectionCone {

@@ -9,11 +9,11 @@ use crate::light::{Light, LightBounds, ShadingPoint};
 use crate::sampling::sampler::ONE_MINUS_EPSILON;
 
 /// Share of the probability spread by the conservative bound (the floor).
-pub const FLOOR: f64 = 0.1;
+pub const ADAPTIVE_FLOOR: f64 = 0.1;
 
 /// p_i = (1 − α)·e_i/Σe + α·m_i/Σm, with e_i = [`Light::contribution_estimate`] and
 /// m_i = [`LightBounds::importance`] (zero only for a light that cannot reach the
-/// point), α = [`FLOOR`]. When every estimate is zero, p_i = m_i/Σm.
+/// point), α = [`ADAPTIVE_FLOOR`]. When every estimate is zero, p_i = m_i/Σm.
 #[derive(Clone, Debug)]
 pub struct AdaptiveSelector {
     lights: Vec<(Light, LightBounds)>,
@@ -39,7 +39,7 @@ impl Sums {
     /// The unnormalised mixture weight (1 − α)·e·Σm + α·m·Σe (or m when Σe = 0).
     fn weight(&self, e: f64, m: f64) -> f64 {
         if self.estimate > 0.0 {
-            (1.0 - FLOOR) * e * self.bound + FLOOR * m * self.estimate
+            (1.0 - ADAPTIVE_FLOOR) * e * self.bound + ADAPTIVE_FLOOR * m * self.estimate
         } else {
             m
         }

@@ -12,7 +12,7 @@ mod bvh;
 mod power;
 mod uniform;
 
-pub use adaptive::AdaptiveSelector;
+pub use adaptive::{ADAPTIVE_FLOOR, AdaptiveSelector};
 pub use bvh::BvhSelector;
 pub use power::PowerSelector;
 pub use uniform::UniformSelector;

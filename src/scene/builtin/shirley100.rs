@@ -170,7 +170,12 @@ fn add_luminaire(b: &mut SceneBuilder, rng: &mut Rng32, i: usize, half: f32, mat
     let strength = BASE_RADIANCE * 100f32.powf(u());
     let emission = Some(Emission::new(Spectrum::new(c[0], c[1], c[2]) * strength));
     // Floor position, drawn again (a few times) when it lands on an object.
-    let mut xz = || ((2.0 * u() - 1.0) * half, (2.0 * u() - 1.0) * half * 0.8 - 1.0);
+    let mut xz = || {
+        (
+            (2.0 * u() - 1.0) * half,
+            (2.0 * u() - 1.0) * half * 0.8 - 1.0,
+        )
+    };
     let (mut x, mut z) = xz();
     for _ in 0..32 {
         if clear_of_objects(x, z, 0.45) {

@@ -74,9 +74,7 @@ fn split(lights: &mut [BuildLight], depth: u32) -> usize {
     let bounds = lights
         .iter()
         .fold(Aabb::EMPTY, |b, l| b.union(l.bounds.aabb));
-    let centroids = lights
-        .iter()
-        .fold(Aabb::EMPTY, |b, l| b.grow(l.centroid));
+    let centroids = lights.iter().fold(Aabb::EMPTY, |b, l| b.grow(l.centroid));
     let mut best: Option<(f32, usize, usize)> = None; // (cost, axis, first bucket above)
     for axis in 0..3 {
         let (lo, hi) = (centroids.min[axis], centroids.max[axis]);
@@ -153,7 +151,8 @@ fn cost(b: &LightBounds, parent: &Aabb, axis: usize) -> f32 {
     let theta_w = (theta_o + theta_e).min(PI);
     let sin_o = theta_o.sin().max(0.0);
     let m_omega = 2.0 * PI * (1.0 - b.cos_theta_o)
-        + 0.5 * PI
+        + 0.5
+            * PI
             * (2.0 * theta_w * sin_o - (theta_o - 2.0 * theta_w).cos() - 2.0 * theta_o * sin_o
                 + b.cos_theta_o);
     let extent = parent.extent();

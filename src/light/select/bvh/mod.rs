@@ -10,7 +10,6 @@ mod build;
 
 use build::{BuildLight, Builder};
 
-use super::adaptive::FLOOR;
 use super::{LightSelector, Selection};
 use crate::light::{Light, LightBounds, ShadingPoint};
 use crate::sampling::sampler::ONE_MINUS_EPSILON;
@@ -40,7 +39,6 @@ const NOT_IN_TREE: u8 = u8::MAX;
 pub struct BvhSelector {
     nodes: Vec<Node>,
     trails: Vec<Trail>,
-    lights: Vec<Light>,
 }
 
 impl BvhSelector {
@@ -76,7 +74,6 @@ impl BvhSelector {
         BvhSelector {
             nodes: builder.nodes,
             trails: builder.trails,
-            lights: lights.to_vec(),
         }
     }
 
@@ -95,18 +92,12 @@ impl BvhSelector {
             .unwrap_or(0)
     }
 
-    /// Importance of node `i` at `at`: the bounds' importance m for a cluster; for a
-    /// single light, its contribution estimate e plus a floor, e + α·m (as the adaptive
-    /// selector, α = [`FLOOR`]), and zero only where m is (the light cannot contribute).
+    /// Importance of node `i` at `at` (of its bounds). Using a leaf light's contribution
+    /// estimate instead (as the adaptive selector) measured no gain on shirley-100
+    /// (relMSE 0.01278 vs 0.01285 at 49 spp), so every node uses its bounds.
     #[inline]
     fn importance(&self, i: usize, at: &ShadingPoint) -> f32 {
-        let node = &self.nodes[i];
-        let m = node.bounds.importance(at);
-        if !node.leaf || m <= 0.0 {
-            return m;
-        }
-        let e = self.lights[node.second_or_light as usize].contribution_estimate(at);
-        e + FLOOR as f32 * m
+        self.nodes[i].bounds.importance(at)
     }
 
     /// The two children of interior node `i` and their importances at `at`; both
@@ -116,6 +107,13 @@ impl BvhSelector {
         let c = [i + 1, self.nodes[i].second_or_light as usize];
         (c, [self.importance(c[0], at), self.importance(c[1], at)])
     }
+}
+
+/// Neither child can contribute (or their sum is not a usable number).
+#[inline]
+fn dead_end(importance: [f32; 2]) -> bool {
+    let total = importance[0] + importance[1];
+    total <= 0.0 || !total.is_finite()
 }
 
 /// Probability of taking child `k` given both importances (the one expression `select`
@@ -141,7 +139,7 @@ impl LightSelector for BvhSelector {
         let mut i = 0;
         while !self.nodes[i].leaf {
             let (child, importance) = self.children(i, at);
-            if !(importance[0] + importance[1] > 0.0) {
+            if dead_end(importance) {
                 return None;
             }
             let p0 = child_probability(importance, 0);
@@ -178,7 +176,7 @@ impl LightSelector for BvhSelector {
         let mut i = 0;
         for depth in 0..trail.depth {
             let (child, importance) = self.children(i, at);
-            if !(importance[0] + importance[1] > 0.0) {
+            if dead_end(importance) {
                 return 0.0;
             }
             let k = ((trail.bits >> depth) & 1) as usize;
