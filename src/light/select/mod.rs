@@ -102,3 +102,72 @@ impl LightSelector for Selector {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+
+    use super::*;
+    use crate::geometry::Shape;
+    use crate::geometry::shape::Sphere;
+    use crate::light::{AreaLight, LightSampling};
+    use crate::math::Spectrum;
+
+    fn sphere(x: f32, radiance: f32) -> Light {
+        Light::Area(AreaLight {
+            shape: Shape::Sphere(Sphere {
+                center: Vec3::new(x, 2.0, 0.0),
+                radius: 0.3,
+            }),
+            radiance: Spectrum::splat(radiance),
+            two_sided: false,
+            sampling: LightSampling::Area,
+        })
+    }
+
+    const AT: ShadingPoint = ShadingPoint {
+        p: Vec3::ZERO,
+        ng: Vec3::Y,
+        n: Vec3::Y,
+    };
+
+    #[test]
+    fn no_lights_select_nothing() {
+        for kind in LightSelect::ALL {
+            let s = Selector::new(kind, &[]);
+            assert!(s.select(&AT, 0.5).is_none(), "{kind}");
+            assert_eq!(s.pmf(&AT, 0), 0.0, "{kind}");
+        }
+    }
+
+    #[test]
+    fn one_light_is_chosen_with_probability_one() {
+        let lights = [sphere(0.0, 1.0)];
+        for kind in LightSelect::ALL {
+            let s = Selector::new(kind, &lights);
+            for u in [0.0, 0.5, 0.999_999_9] {
+                let sel = s.select(&AT, u).expect("a light");
+                assert_eq!((sel.index, sel.pmf), (0, 1.0), "{kind}");
+                assert!((0.0..1.0).contains(&sel.u_reused), "{kind}");
+            }
+            assert_eq!(s.pmf(&AT, 1), 0.0, "{kind}: out of range");
+        }
+    }
+
+    #[test]
+    fn dark_lights_are_never_chosen_by_informed_selectors() {
+        let lights: Vec<Light> = (0..7)
+            .map(|i| sphere(i as f32 - 3.0, if i == 2 { 0.0 } else { 1.0 + i as f32 }))
+            .collect();
+        for kind in [LightSelect::Power, LightSelect::Adaptive, LightSelect::Bvh] {
+            let s = Selector::new(kind, &lights);
+            assert_eq!(s.pmf(&AT, 2), 0.0, "{kind}");
+            for k in 0..1000 {
+                let sel = s.select(&AT, k as f32 / 1000.0).expect("a light");
+                assert_ne!(sel.index, 2, "{kind}");
+            }
+        }
+        let bvh = BvhSelector::new(&lights);
+        assert_eq!(bvh.node_count(), 2 * 6 - 1);
+    }
+}
