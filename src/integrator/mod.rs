@@ -52,10 +52,9 @@ pub struct Estimator {
 impl Estimator {
     /// The estimator `kind` for `scene`, choosing lights with `select`.
     pub fn new(scene: &Scene, kind: EstimatorKind, select: LightSelect) -> Estimator {
-        let powers: Vec<f32> = scene.lights.iter().map(|l| l.power()).collect();
         Estimator {
             kind,
-            selector: Selector::new(select, &powers),
+            selector: Selector::new(select, &scene.lights),
             mis: MisSettings::default(),
         }
     }

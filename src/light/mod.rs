@@ -3,11 +3,15 @@
 //! and densities at a shading point.
 
 mod area;
+mod bounds;
+pub mod cone;
 pub mod environment;
+mod estimate;
 mod point;
 pub mod select;
 
 pub use area::{AreaLight, LightSampling};
+pub use bounds::LightBounds;
 pub use environment::Environment;
 pub use point::PointLight;
 

@@ -257,6 +257,11 @@ impl Environment {
         }
     }
 
+    /// ∫ L dω over the sphere (luminance, scale included).
+    pub fn radiance_integral(&self) -> f32 {
+        self.integral
+    }
+
     /// Power estimate Φ = π r² ∫ L dω (luminance) for a scene of bounding radius r: the
     /// power the environment sends through a disk that covers the scene (pbrt-v4 §12.5).
     pub fn power(&self) -> f32 {
