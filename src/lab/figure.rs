@@ -1,0 +1,425 @@
+//! The lecture's comparisons as data: each figure is one or more panels, a panel a scene
+//! and labelled strategy flag strings, parsed at run time. A figure whose scene or
+//! strategy this build lacks fails before rendering and names what is missing.
+
+use std::path::Path;
+use std::sync::atomic::AtomicBool;
+
+use serde_json::json;
+
+use crate::lab::LabError;
+use crate::lab::budget::Budget;
+use crate::lab::compare::{CompareConfig, StrategyResult, run_compare};
+use crate::lab::experiment::{ReferenceSource, load_scene, resolve};
+use crate::lab::report::{Report, Table, command_line, write_report, write_text};
+use crate::lab::strategy::{Strategy, slug};
+use crate::lab::variance_1d::variance_table;
+
+/// One comparison of a figure.
+#[derive(Clone, Copy, Debug)]
+pub struct Panel {
+    /// Title (also the sub-folder name when a figure has several panels).
+    pub title: &'static str,
+    /// The scene.
+    pub scene: &'static str,
+    /// (label, flags) of each strategy.
+    pub strategies: &'static [(&'static str, &'static str)],
+    /// Equal spp of the comparison.
+    pub spp: u32,
+    /// Reference strategies, best first: the first this build can make is used.
+    pub reference: &'static [&'static str],
+    /// Reference spp.
+    pub reference_spp: u32,
+}
+
+/// What a figure computes.
+#[derive(Clone, Copy, Debug)]
+pub enum FigureKind {
+    /// Image comparisons.
+    Panels(&'static [Panel]),
+    /// The lecture's 1D table: ∫cos vs ∫4cos¹⁶ under three densities.
+    Variance1d,
+}
+
+/// A lecture figure.
+#[derive(Clone, Copy, Debug)]
+pub struct Figure {
+    /// `lightlab figure NAME`.
+    pub name: &'static str,
+    /// What it shows.
+    pub description: &'static str,
+    /// Its content.
+    pub kind: FigureKind,
+}
+
+const LIGHT_REF: &[&str] = &["--estimator mis", "--estimator light"];
+
+/// Every figure, in lecture order.
+pub const FIGURES: &[Figure] = &[
+    Figure {
+        name: "variance-1d",
+        description: "∫cos x vs ∫4cos¹⁶x on [0, π/2]: uniform, cosine and tabulated densities",
+        kind: FigureKind::Variance1d,
+    },
+    Figure {
+        name: "assignment",
+        description: "uniform hemisphere vs cosine vs BRDF vs light sampling on the assignment scene",
+        kind: FigureKind::Panels(&[Panel {
+            title: "assignment",
+            scene: "builtin:assignment",
+            strategies: &[
+                ("uniform hemisphere", "--estimator hemisphere"),
+                ("cosine", "--estimator cosine"),
+                ("BRDF", "--estimator bsdf"),
+                ("light", "--estimator light"),
+            ],
+            spp: 16,
+            reference: LIGHT_REF,
+            reference_spp: 1024,
+        }]),
+    },
+    Figure {
+        name: "sphere-light",
+        description: "a spherical light near a plane: p1 area, p2 visible area, p3 solid angle, p4 ∝ G",
+        kind: FigureKind::Panels(&[Panel {
+            title: "sphere-light",
+            scene: "builtin:sphere-near-plane",
+            strategies: &[
+                ("p1 area", "--estimator light --light-sampling area"),
+                ("p2 visible area", "--estimator light --light-sampling visible-area"),
+                ("p3 solid angle", "--estimator light --light-sampling solid-angle"),
+                ("p4 geometric", "--estimator light --light-sampling geometric"),
+            ],
+            spp: 16,
+            reference: &[
+                "--estimator mis --light-sampling solid-angle",
+                "--estimator light --light-sampling solid-angle",
+            ],
+            reference_spp: 1024,
+        }]),
+    },
+    Figure {
+        name: "lights-shapes",
+        description: "uniform area vs solid-angle sampling of a rectangle, a triangle and a polygon",
+        kind: FigureKind::Panels(&[
+            shape_panel("rectangle", "builtin:rectangle-light"),
+            shape_panel("triangle", "builtin:triangle-light"),
+            shape_panel("polygon", "builtin:polygon-light"),
+        ]),
+    },
+    Figure {
+        name: "many-lights",
+        description: "uniform vs power vs adaptive vs BVH light selection, shirley-100 at 49 spp",
+        kind: FigureKind::Panels(&[Panel {
+            title: "many-lights",
+            scene: "builtin:shirley-100",
+            strategies: &[
+                ("uniform", "--estimator light --light-select uniform"),
+                ("power", "--estimator light --light-select power"),
+                ("adaptive", "--estimator light --light-select adaptive"),
+                ("bvh", "--estimator light --light-select bvh"),
+            ],
+            spp: 49,
+            reference: &[
+                "--estimator mis --light-select bvh",
+                "--estimator light --light-select bvh",
+            ],
+            reference_spp: 2048,
+        }]),
+    },
+    Figure {
+        name: "veach-mis",
+        description: "Veach's plates: light sampling vs BRDF sampling vs MIS",
+        kind: FigureKind::Panels(&[Panel {
+            title: "veach-mis",
+            scene: "builtin:veach-mis",
+            strategies: &[
+                ("light", "--estimator light"),
+                ("BRDF", "--estimator bsdf"),
+                ("MIS", "--estimator mis"),
+            ],
+            spp: 16,
+            reference: &["--estimator mis"],
+            reference_spp: 1024,
+        }]),
+    },
+    Figure {
+        name: "envmap",
+        description: "environment lighting: cosine vs BRDF vs environment-map sampling vs MIS",
+        kind: FigureKind::Panels(&[Panel {
+            title: "envmap",
+            scene: "builtin:envmap",
+            strategies: &[
+                ("cosine", "--estimator cosine"),
+                ("BRDF", "--estimator bsdf"),
+                ("light (envmap)", "--estimator light"),
+                ("MIS", "--estimator mis"),
+            ],
+            spp: 16,
+            reference: &["--estimator mis"],
+            reference_spp: 1024,
+        }]),
+    },
+];
+
+const fn shape_panel(title: &'static str, scene: &'static str) -> Panel {
+    Panel {
+        title,
+        scene,
+        strategies: &[
+            ("area", "--estimator light --light-sampling area"),
+            ("solid angle", "--estimator light --light-sampling solid-angle"),
+        ],
+        spp: 16,
+        reference: &[
+            "--estimator mis --light-sampling solid-angle",
+            "--estimator light --light-sampling solid-angle",
+        ],
+        reference_spp: 1024,
+    }
+}
+
+/// The figure named `name`.
+pub fn find(name: &str) -> Result<&'static Figure, LabError> {
+    FIGURES.iter().find(|f| f.name == name).ok_or_else(|| {
+        let known: Vec<_> = FIGURES.iter().map(|f| f.name).collect();
+        LabError::Input(format!(
+            "unknown figure \"{name}\" (known: {})",
+            known.join(", ")
+        ))
+    })
+}
+
+/// Run-time choices: flags for every render, and optional spp overrides.
+#[derive(Clone, Debug, Default)]
+pub struct FigureOptions {
+    /// Flags applied to every strategy (`--width`, `--seed`, ...).
+    pub base_flags: Vec<String>,
+    /// Override of the panels' equal spp.
+    pub spp: Option<u32>,
+    /// Override of the reference spp.
+    pub reference_spp: Option<u32>,
+}
+
+/// Checks that every scene and strategy of `figure` exists in this build and returns the
+/// compare configuration of each panel; otherwise names everything missing
+/// ("figure veach-mis needs estimator `mis`, scene `builtin:veach-mis`, not built yet").
+pub fn plan(figure: &Figure, options: &FigureOptions) -> Result<Vec<CompareConfig>, LabError> {
+    let FigureKind::Panels(panels) = figure.kind else {
+        return Ok(vec![]);
+    };
+    let mut missing: Vec<String> = Vec::new();
+    let mut note = |e: LabError| match e.missing() {
+        Some(m) if !missing.contains(&m) => missing.push(m),
+        Some(_) => {}
+        None => missing.push(e.to_string()),
+    };
+    let mut configs = Vec::new();
+    for panel in panels {
+        let strategies: Vec<Strategy> = panel
+            .strategies
+            .iter()
+            .map(|(l, f)| Strategy::new(*l, *f))
+            .collect();
+        let scene = match load_scene(panel.scene) {
+            Ok(s) => s,
+            Err(e) => {
+                note(e);
+                continue;
+            }
+        };
+        if let Err(e) = resolve(&scene, &strategies, &options.base_flags, &[]) {
+            note(e);
+        }
+        let reference = panel
+            .reference
+            .iter()
+            .map(|f| Strategy::new("reference", *f))
+            .find(|s| resolve(&scene, std::slice::from_ref(s), &options.base_flags, &[]).is_ok());
+        let Some(reference) = reference else {
+            let first = Strategy::new("reference", panel.reference[0]);
+            if let Err(e) = resolve(&scene, &[first], &options.base_flags, &[]) {
+                note(e);
+            }
+            continue;
+        };
+        configs.push(CompareConfig {
+            scene: panel.scene.to_string(),
+            strategies,
+            budget: Budget::Spp(options.spp.unwrap_or(panel.spp)),
+            base_flags: options.base_flags.clone(),
+            reference: ReferenceSource::Render {
+                strategy: reference,
+                spp: options.reference_spp.unwrap_or(panel.reference_spp),
+            },
+            insets: vec![],
+            title: Some(format!("{}: {}", figure.name, panel.title)),
+            notes: vec![format!("Figure {}: {}.", figure.name, figure.description)],
+        });
+    }
+    if missing.is_empty() {
+        Ok(configs)
+    } else {
+        Err(LabError::Input(format!(
+            "figure {} needs {}, not built yet",
+            figure.name,
+            missing.join(", ")
+        )))
+    }
+}
+
+/// Runs `figure` and writes its report into `dir`. Returns each panel's results.
+pub fn run_figure(
+    figure: &Figure,
+    options: &FigureOptions,
+    dir: &Path,
+    stop: &AtomicBool,
+    log: &dyn Fn(&str),
+) -> Result<Vec<(String, Vec<StrategyResult>)>, LabError> {
+    if let FigureKind::Variance1d = figure.kind {
+        write_variance_1d(figure, dir)?;
+        return Ok(vec![]);
+    }
+    let configs = plan(figure, options)?;
+    if configs.len() == 1 {
+        let results = run_compare(&configs[0], dir, stop, log)?;
+        return Ok(vec![(figure.name.to_string(), results)]);
+    }
+    let mut all = Vec::new();
+    let mut links = Vec::new();
+    let mut table = Table {
+        caption: "Every panel at equal spp; relative efficiency within each panel".into(),
+        header: ["panel", "strategy", "spp", "time (s)", "relMSE", "rel. efficiency"]
+            .map(String::from)
+            .to_vec(),
+        rows: vec![],
+    };
+    for config in &configs {
+        let name = slug(config.title.as_deref().unwrap_or("panel"));
+        let results = run_compare(config, &dir.join(&name), stop, log)?;
+        for r in &results {
+            table.rows.push(vec![
+                config.scene.clone(),
+                r.label.clone(),
+                r.spp.to_string(),
+                format!("{:.3}", r.time.as_secs_f64()),
+                format!("{:.4e}", r.error.rel_mse),
+                format!("{:.3}", r.relative_efficiency),
+            ]);
+        }
+        links.push((
+            config.title.clone().unwrap_or_default(),
+            format!("{name}/index.html"),
+        ));
+        all.push((name, results));
+    }
+    let report = Report {
+        title: format!("figure {}", figure.name),
+        command: command_line(),
+        seeds: crate::lab::compare::seeds_of(&options.base_flags),
+        notes: vec![figure.description.to_string()],
+        viewer: vec![],
+        tables: vec![table.clone()],
+        galleries: vec![],
+        links,
+    };
+    write_report(dir, &report)?;
+    write_text(
+        &dir.join("results.md"),
+        &format!("# figure {}\n\n{}\n\n{}", figure.name, figure.description, table.markdown()),
+    )?;
+    let json = json!({
+        "figure": figure.name,
+        "command": report.command,
+        "lightlab_version": crate::lab::report::VERSION,
+        "panels": all.iter().map(|(name, rs)| json!({
+            "panel": name,
+            "results": format!("{name}/results.json"),
+            "rel_mse": rs.iter().map(|r| (r.label.clone(), r.error.rel_mse)).collect::<Vec<_>>(),
+        })).collect::<Vec<_>>(),
+    });
+    write_text(
+        &dir.join("results.json"),
+        &serde_json::to_string_pretty(&json).map_err(|e| LabError::Input(e.to_string()))?,
+    )?;
+    Ok(all)
+}
+
+/// Samples per strategy in the 1D table.
+const VARIANCE_1D_SAMPLES: usize = 100_000;
+
+fn write_variance_1d(figure: &Figure, dir: &Path) -> Result<(), LabError> {
+    let seed = 1;
+    let rows = variance_table(VARIANCE_1D_SAMPLES, seed);
+    let table = Table {
+        caption: format!(
+            "{VARIANCE_1D_SAMPLES} samples per row: the smoother f/p, the lower the variance"
+        ),
+        header: ["integrand", "density p", "estimate", "exact", "variance of f/p", "std. error"]
+            .map(String::from)
+            .to_vec(),
+        rows: rows
+            .iter()
+            .map(|r| {
+                vec![
+                    r.integrand.to_string(),
+                    r.strategy.to_string(),
+                    format!("{:.5}", r.estimate),
+                    format!("{:.5}", r.exact),
+                    format!("{:.4e}", r.variance),
+                    format!("{:.2e}", r.standard_error()),
+                ]
+            })
+            .collect(),
+    };
+    let report = Report {
+        title: format!("figure {}", figure.name),
+        command: command_line(),
+        seeds: vec![seed],
+        notes: vec![
+            figure.description.to_string(),
+            "Sampling with p = cos x makes f/p constant for ∫cos (zero variance) but not for ∫4cos¹⁶, which is far more peaked than p: importance sampling helps only as far as p follows f.".into(),
+        ],
+        tables: vec![table.clone()],
+        ..Default::default()
+    };
+    write_report(dir, &report)?;
+    write_text(
+        &dir.join("results.md"),
+        &format!("# figure {}\n\n{}\n", figure.name, table.markdown()),
+    )?;
+    let json = json!({
+        "figure": figure.name,
+        "command": report.command,
+        "lightlab_version": crate::lab::report::VERSION,
+        "rows": rows.iter().map(|r| json!({
+            "integrand": r.integrand, "strategy": r.strategy, "estimate": r.estimate,
+            "exact": r.exact, "variance": r.variance, "samples": r.samples,
+        })).collect::<Vec<_>>(),
+    });
+    write_text(
+        &dir.join("results.json"),
+        &serde_json::to_string_pretty(&json).map_err(|e| LabError::Input(e.to_string()))?,
+    )?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn missing_pieces_are_named() {
+        let opts = FigureOptions::default();
+        // The assignment figure only needs what the core has.
+        assert_eq!(plan(find("assignment").unwrap(), &opts).unwrap().len(), 1);
+        for f in FIGURES {
+            if let Err(e) = plan(f, &opts) {
+                let m = e.to_string();
+                assert!(m.starts_with(&format!("figure {} needs ", f.name)), "{m}");
+                assert!(m.ends_with("not built yet"), "{m}");
+            }
+        }
+        assert!(find("nope").is_err());
+    }
+}
