@@ -178,7 +178,7 @@ pub fn run_converge(
             curves: series
                 .iter()
                 .map(|s| Curve {
-                    label: format!("{} ({:.2})", s.label, if stem == "error-vs-spp" { s.slope_spp } else { s.slope_time }),
+                    label: format!("{} (slope {:.2})", s.label, if stem == "error-vs-spp" { s.slope_spp } else { s.slope_time }),
                     points: s
                         .points
                         .iter()

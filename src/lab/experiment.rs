@@ -41,6 +41,10 @@ pub fn resolve(
         .collect()
 }
 
+/// Mixed into the seed of a rendered reference so its streams differ from every
+/// strategy's.
+pub const REFERENCE_SEED_SALT: u64 = 0x5eed_0f_4ef_e4e4c3;
+
 /// Where the reference comes from.
 #[derive(Clone, Debug)]
 pub enum ReferenceSource {
@@ -104,7 +108,11 @@ pub fn obtain_reference(
             })
         }
         ReferenceSource::Render { strategy, spp } => {
-            let settings = resolve(scene, std::slice::from_ref(strategy), base, &[])?.remove(0);
+            let mut settings =
+                resolve(scene, std::slice::from_ref(strategy), base, &[])?.remove(0);
+            // Streams of their own: a reference sharing samples with a strategy it judges
+            // would favour that strategy.
+            settings.seed ^= REFERENCE_SEED_SALT;
             let target = ReferenceTarget {
                 max_spp: Some(*spp),
                 ..Default::default()
@@ -119,7 +127,11 @@ pub fn obtain_reference(
                 description: format!(
                     "reference: rendered with \"{}\" (`{}`), {} spp in {:.1} s, estimated relative error {:.2e} (image mean), {:.2e} (90% of pixels)",
                     strategy.label,
-                    settings.flags(),
+                    RenderSettings {
+                        spp: r.output.spp,
+                        ..settings.clone()
+                    }
+                    .flags(),
                     r.output.spp,
                     r.output.time.as_secs_f64(),
                     r.error.mean_rel_error,

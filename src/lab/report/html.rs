@@ -27,6 +27,11 @@ pub fn js_string(text: &str) -> String {
         .replace('<', "\\u003c")
 }
 
+/// Reports on the console any file the page names but cannot load (registered first, in
+/// the head, so it sees every load), so a headless check notices.
+const WATCH: &str = "window.addEventListener('error', function (e) { var t = e.target; \
+if (t && t !== window && (t.src || t.href)) { console.error('lightlab report: cannot load ' + (t.src || t.href)); } }, true);";
+
 /// The whole page.
 pub fn render_html(report: &Report) -> String {
     let mut body = String::new();
@@ -74,7 +79,7 @@ pub fn render_html(report: &Report) -> String {
     format!(
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
          <title>{title}</title>\n<link rel=\"icon\" href=\"data:,\">\n\
-         <link rel=\"stylesheet\" href=\"report.css\">\n</head>\n<body>\n{body}\
+         <link rel=\"stylesheet\" href=\"report.css\">\n<script>{WATCH}</script>\n</head>\n<body>\n{body}\
          {scripts}<script>window.LIGHTLAB_VIEWER = [{list}];</script>\n\
          <script src=\"report.js\"></script>\n</body>\n</html>\n",
         title = escape(&report.title),

@@ -41,7 +41,10 @@
     var img = pixels(entry.key);
     var canvas = canvases[side];
     tags[side].textContent = entry.label;
-    if (!img) { return; }
+    if (!img) {
+      console.error("lightlab report: no pixel data for " + entry.key + " (img/" + entry.key + ".js)");
+      return;
+    }
     canvas.width = img.width;
     canvas.height = img.height;
     size = { width: img.width, height: img.height };
