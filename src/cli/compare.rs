@@ -6,9 +6,9 @@ use std::time::Duration;
 
 use clap::Args;
 
+use super::CliError;
 use super::lab_args::LabRenderArgs;
 use super::render::{STOP, install_stop_handler};
-use super::CliError;
 use crate::lab::budget::Budget;
 use crate::lab::compare::{CompareConfig, run_compare};
 use crate::lab::experiment::ReferenceSource;
@@ -59,7 +59,11 @@ pub fn budget(spp: Option<u32>, time: Option<f64>) -> Result<Budget, CliError> {
 }
 
 /// The reference source: the file, or the first strategy at `spp`.
-pub fn reference_source(file: &Option<PathBuf>, first: &Strategy, spp: u32) -> Result<ReferenceSource, CliError> {
+pub fn reference_source(
+    file: &Option<PathBuf>,
+    first: &Strategy,
+    spp: u32,
+) -> Result<ReferenceSource, CliError> {
     if spp == 0 {
         return Err(CliError::input("--reference-spp must be at least 1"));
     }
@@ -91,7 +95,10 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
         .render
         .install(|| run_compare(&config, &args.output, &STOP, &log))?
         .map_err(CliError::input)?;
-    print!("{}", crate::lab::compare::results_table(&results).markdown());
+    print!(
+        "{}",
+        crate::lab::compare::results_table(&results).markdown()
+    );
     eprintln!("report: {}", args.output.join("index.html").display());
     Ok(())
 }

@@ -38,7 +38,9 @@ pub fn run(args: &FigureArgs) -> Result<(), CliError> {
         reference_spp: args.reference_spp,
     };
     if args.spp == Some(0) || args.reference_spp == Some(0) {
-        return Err(CliError::input("--spp and --reference-spp must be at least 1"));
+        return Err(CliError::input(
+            "--spp and --reference-spp must be at least 1",
+        ));
     }
     if args.list {
         for f in FIGURES {

@@ -22,14 +22,24 @@ pub struct MergeArgs {
 
 /// Runs `merge`.
 pub fn run(args: &MergeArgs) -> Result<(), CliError> {
-    if !args.output.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")) {
-        return Err(CliError::input("merge writes .exr (variance and spp are kept)"));
+    if !args
+        .output
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("exr"))
+    {
+        return Err(CliError::input(
+            "merge writes .exr (variance and spp are kept)",
+        ));
     }
     let film = merge_files(&args.parts).map_err(CliError::input)?;
     let parts: Vec<String> = args.parts.iter().map(|p| p.display().to_string()).collect();
     let metadata = vec![("lightlab.merged_from".to_string(), parts.join(" "))];
     write_film_with_metadata(&film, &args.output, 0.0, &metadata).map_err(CliError::failure)?;
     let spp = film.pixels.iter().map(|p| p.count).min().unwrap_or(0);
-    eprintln!("merged {} parts: {spp} spp -> {}", args.parts.len(), args.output.display());
+    eprintln!(
+        "merged {} parts: {spp} spp -> {}",
+        args.parts.len(),
+        args.output.display()
+    );
     Ok(())
 }

@@ -40,10 +40,18 @@ pub struct ReferenceArgs {
 /// Runs `reference`.
 pub fn run(args: &ReferenceArgs) -> Result<(), CliError> {
     if args.strategy.pass.is_some() {
-        return Err(CliError::input("reference renders whole images; --pass does not apply"));
+        return Err(CliError::input(
+            "reference renders whole images; --pass does not apply",
+        ));
     }
-    if !args.output.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")) {
-        return Err(CliError::input("the reference must be an .exr file (it keeps variance and metadata)"));
+    if !args
+        .output
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("exr"))
+    {
+        return Err(CliError::input(
+            "the reference must be an .exr file (it keeps variance and metadata)",
+        ));
     }
     let target = ReferenceTarget {
         rel_error: args.rel_error,
@@ -56,7 +64,9 @@ pub fn run(args: &ReferenceArgs) -> Result<(), CliError> {
     };
     match target.rel_error {
         Some(e) if !(e.is_finite() && e > 0.0) => {
-            return Err(CliError::input(format!("--rel-error must be positive, not {e}")));
+            return Err(CliError::input(format!(
+                "--rel-error must be positive, not {e}"
+            )));
         }
         None if target.max_spp.is_none() && target.max_time.is_none() => {
             return Err(CliError::input("give --rel-error, --spp or --time"));
@@ -95,8 +105,14 @@ pub fn run(args: &ReferenceArgs) -> Result<(), CliError> {
         ("lightlab.settings", final_settings.flags()),
         ("lightlab.time_s", format!("{:.3}", out.time.as_secs_f64())),
         ("lightlab.passes", r.passes.to_string()),
-        ("lightlab.rel_error_mean", format!("{:.4e}", r.error.mean_rel_error)),
-        ("lightlab.rel_error_pixel_q90", format!("{:.4e}", r.error.pixel_rel_error)),
+        (
+            "lightlab.rel_error_mean",
+            format!("{:.4e}", r.error.mean_rel_error),
+        ),
+        (
+            "lightlab.rel_error_pixel_q90",
+            format!("{:.4e}", r.error.pixel_rel_error),
+        ),
         ("lightlab.converged", r.converged.to_string()),
         ("lightlab.invalid_samples", out.invalid_samples.to_string()),
     ]

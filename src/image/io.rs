@@ -201,11 +201,15 @@ fn write_exr(film: &Film, path: &Path, metadata: &[(String, String)]) -> Result<
         .insert(Text::from("spp"), AttributeValue::I32(spp as i32));
     for (name, value) in metadata {
         if name == "spp" || name.is_empty() {
-            return Err(image_error(path, format!("bad EXR attribute name \"{name}\"")));
+            return Err(image_error(
+                path,
+                format!("bad EXR attribute name \"{name}\""),
+            ));
         }
-        attributes
-            .other
-            .insert(Text::from(name.as_str()), AttributeValue::Text(Text::from(value.as_str())));
+        attributes.other.insert(
+            Text::from(name.as_str()),
+            AttributeValue::Text(Text::from(value.as_str())),
+        );
     }
     let layer = Layer::new(
         size,

@@ -75,6 +75,44 @@ fn render_timed(
     control: &Control<'_>,
 ) -> RenderOutput {
     let start = Instant::now();
+    // A watcher raises `deadline` at the budget (or on an outside stop request), so a
+    // round whose speed estimate was too optimistic still ends within one of `render`'s
+    // own rounds (an eighth of the call).
+    let deadline = AtomicBool::new(false);
+    let finished = AtomicBool::new(false);
+    let timed = Control {
+        progress: control.progress,
+        stop: &deadline,
+    };
+    let out = std::thread::scope(|scope| {
+        scope.spawn(|| {
+            while !finished.load(Ordering::Relaxed) {
+                if control.stop.load(Ordering::Relaxed) || start.elapsed() >= limit {
+                    deadline.store(true, Ordering::Relaxed);
+                    break;
+                }
+                std::thread::sleep(Duration::from_micros(500));
+            }
+        });
+        let out = rounds(scene, settings, limit, start, &timed);
+        finished.store(true, Ordering::Relaxed);
+        out
+    });
+    RenderOutput {
+        time: start.elapsed(),
+        stopped: control.stop.load(Ordering::Relaxed),
+        ..out
+    }
+}
+
+/// The rounds of a timed render (see the module docs).
+fn rounds(
+    scene: &Scene,
+    settings: &RenderSettings,
+    limit: Duration,
+    start: Instant,
+    control: &Control<'_>,
+) -> RenderOutput {
     let mut spp_next = 1u32;
     let mut total: Option<RenderOutput> = None;
     for k in 0.. {
@@ -86,6 +124,7 @@ fn render_timed(
         let out = render(scene, &s, control);
         let merged = match total.take() {
             None => out,
+            Some(t) if out.spp == 0 => t,
             Some(t) => RenderOutput {
                 film: t.film.merge(&out.film).unwrap_or(t.film),
                 time: Duration::ZERO,
@@ -94,10 +133,10 @@ fn render_timed(
                 stopped: out.stopped,
             },
         };
-        let elapsed = start.elapsed();
-        let per_spp = elapsed.as_secs_f64() / merged.spp.max(1) as f64;
-        let left = limit.as_secs_f64() - elapsed.as_secs_f64();
-        let stopped = merged.stopped || control.stop.load(Ordering::Relaxed);
+        let elapsed = start.elapsed().as_secs_f64();
+        let per_spp = elapsed / merged.spp.max(1) as f64;
+        let left = limit.as_secs_f64() - elapsed;
+        let stopped = control.stop.load(Ordering::Relaxed);
         total = Some(merged);
         if stopped || left < 0.5 * per_spp {
             break;
@@ -105,9 +144,7 @@ fn render_timed(
         // Half the time left, at least one spp (converges to the budget from below).
         spp_next = ((0.5 * left / per_spp).ceil() as u32).max(1);
     }
-    let mut out = total.expect("at least one round ran");
-    out.time = start.elapsed();
-    out
+    total.expect("at least one round ran")
 }
 
 #[cfg(test)]

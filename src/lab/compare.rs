@@ -17,7 +17,9 @@ use crate::image::io::write_film;
 use crate::image::metrics::{ErrorReport, compare, false_color};
 use crate::lab::LabError;
 use crate::lab::budget::{Budget, render_budget};
-use crate::lab::experiment::{ReferenceImage, ReferenceSource, load_scene, obtain_reference, resolve};
+use crate::lab::experiment::{
+    ReferenceImage, ReferenceSource, load_scene, obtain_reference, resolve,
+};
 use crate::lab::insets::{Inset, pick_insets, write_insets};
 use crate::lab::report::{
     Gallery, Report, Table, ViewerImage, command_line, write_report, write_text, write_viewer_image,
@@ -89,15 +91,28 @@ pub fn run_compare(
     let settings = resolve(&scene, &config.strategies, &config.base_flags, &extra)?;
     let camera = settings[0].camera(&scene);
     let size = (camera.width, camera.height);
-    log(&format!("reference for {} ({}x{})", config.scene, size.0, size.1));
+    log(&format!(
+        "reference for {} ({}x{})",
+        config.scene, size.0, size.1
+    ));
     let reference = obtain_reference(&scene, &config.reference, &config.base_flags, size, stop)?;
     let mut results = Vec::new();
     let mut films = Vec::new();
     for (strategy, s) in config.strategies.iter().zip(&settings) {
         let out = render_budget(&scene, s, config.budget, stop);
         let means = out.film.means();
-        let variance: Vec<_> = out.film.pixels.iter().map(|p| p.variance_of_mean()).collect();
-        let error = compare(&means, Some(&variance), &reference.rgb, reference.variance.as_deref());
+        let variance: Vec<_> = out
+            .film
+            .pixels
+            .iter()
+            .map(|p| p.variance_of_mean())
+            .collect();
+        let error = compare(
+            &means,
+            Some(&variance),
+            &reference.rgb,
+            reference.variance.as_deref(),
+        );
         let efficiency = 1.0 / (error.rel_mse.max(1e-300) * out.time.as_secs_f64().max(1e-9));
         log(&format!(
             "{}: {} spp in {:.2} s, relMSE {:.4e}",
@@ -108,7 +123,11 @@ pub fn run_compare(
         ));
         results.push(StrategyResult {
             label: strategy.label.clone(),
-            flags: crate::render::RenderSettings { spp: out.spp, ..s.clone() }.flags(),
+            flags: crate::render::RenderSettings {
+                spp: out.spp,
+                ..s.clone()
+            }
+            .flags(),
             spp: out.spp,
             time: out.time,
             error,
@@ -148,7 +167,12 @@ fn write_outputs(
         write_viewer_image(dir, slug, w, h, &means)?;
         write_film(film, &dir.join("img").join(format!("{slug}.exr")), 0.0)?;
         let map = format!("img/{slug}-error.png");
-        crate::image::io::write_rgb8_png(w, h, false_color(&means, &reference.rgb), &dir.join(&map))?;
+        crate::image::io::write_rgb8_png(
+            w,
+            h,
+            false_color(&means, &reference.rgb),
+            &dir.join(&map),
+        )?;
         viewer.push(ViewerImage {
             label: r.label.clone(),
             key: slug.clone(),
@@ -161,7 +185,14 @@ fn write_outputs(
     } else {
         config.insets.clone()
     };
-    let inset_gallery = write_insets(dir, &insets, reference, &all_means, &slugs, &config.strategies)?;
+    let inset_gallery = write_insets(
+        dir,
+        &insets,
+        reference,
+        &all_means,
+        &slugs,
+        &config.strategies,
+    )?;
     let table = results_table(results);
     let title = config
         .title
@@ -169,7 +200,13 @@ fn write_outputs(
         .unwrap_or_else(|| format!("{} at {}", config.scene, config.budget.describe()));
     let seeds = seeds_of(&config.base_flags);
     let mut notes = config.notes.clone();
-    notes.push(format!("scene: {}, {}x{}, {}", config.scene, w, h, config.budget.describe()));
+    notes.push(format!(
+        "scene: {}, {}x{}, {}",
+        config.scene,
+        w,
+        h,
+        config.budget.describe()
+    ));
     notes.push(reference.description.clone());
     for r in results.iter().filter(|r| looks_biased(&r.error)) {
         notes.push(format!(
@@ -253,10 +290,19 @@ pub fn seeds_of(flags: &[String]) -> Vec<u64> {
 /// The results table: spp, time, MSE, relMSE, bias, efficiency.
 pub fn results_table(results: &[StrategyResult]) -> Table {
     Table {
-        caption: "Error against the reference; relative efficiency = 1/(relMSE·time), best = 1".into(),
-        header: ["strategy", "spp", "time (s)", "MSE", "relMSE", "bias (z)", "rel. efficiency"]
-            .map(String::from)
-            .to_vec(),
+        caption: "Error against the reference; relative efficiency = 1/(relMSE·time), best = 1"
+            .into(),
+        header: [
+            "strategy",
+            "spp",
+            "time (s)",
+            "MSE",
+            "relMSE",
+            "bias (z)",
+            "rel. efficiency",
+        ]
+        .map(String::from)
+        .to_vec(),
         rows: results
             .iter()
             .map(|r| {
@@ -271,7 +317,11 @@ pub fn results_table(results: &[StrategyResult]) -> Table {
                             "{:+.2}% ({:+.1}){}",
                             100.0 * r.error.relative_bias,
                             z,
-                            if looks_biased(&r.error) { " biased" } else { "" }
+                            if looks_biased(&r.error) {
+                                " biased"
+                            } else {
+                                ""
+                            }
                         ),
                         None => format!("{:+.2}%", 100.0 * r.error.relative_bias),
                     },

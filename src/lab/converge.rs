@@ -16,7 +16,9 @@ use crate::lab::experiment::{ReferenceSource, load_scene, obtain_reference, reso
 use crate::lab::plot::{Curve, LogLogPlot, write_plot};
 use crate::lab::report::{Gallery, Report, Table, command_line, write_report, write_text};
 use crate::lab::strategy::Strategy;
+use crate::math::Spectrum;
 use crate::render::{RenderSettings, render_quiet};
+use crate::scene::Scene;
 
 /// What to measure.
 #[derive(Clone, Debug)]
@@ -67,7 +69,10 @@ pub struct ConvergeSeries {
 
 /// The spp of the points: 1, 2, 4, … below `max`, then `max`.
 pub fn spp_points(max: u32) -> Vec<u32> {
-    let mut v: Vec<u32> = (0..32).map(|k| 1u32 << k).take_while(|&n| n < max).collect();
+    let mut v: Vec<u32> = (0..32)
+        .map(|k| 1u32 << k)
+        .take_while(|&n| n < max)
+        .collect();
     v.push(max.max(1));
     v
 }
@@ -100,7 +105,9 @@ pub fn measure(
     log: &dyn Fn(&str),
 ) -> Result<(Vec<ConvergeSeries>, String), LabError> {
     if config.seeds == 0 || config.max_spp == 0 {
-        return Err(LabError::Input("--seeds and --max-spp must be at least 1".into()));
+        return Err(LabError::Input(
+            "--seeds and --max-spp must be at least 1".into(),
+        ));
     }
     let scene = load_scene(&config.scene)?;
     let settings = resolve(&scene, &config.strategies, &config.base_flags, &[])?;
@@ -108,20 +115,47 @@ pub fn measure(
     let size = (camera.width, camera.height);
     let reference = obtain_reference(&scene, &config.reference, &config.base_flags, size, stop)?;
     log(&reference.description);
+    let labels: Vec<String> = config.strategies.iter().map(|s| s.label.clone()).collect();
+    let series = measure_settings(
+        &scene,
+        &labels,
+        &settings,
+        &spp_points(config.max_spp),
+        config.seeds,
+        &reference.rgb,
+        stop,
+        log,
+    )?;
+    Ok((series, reference.description))
+}
+
+/// Measures already resolved `settings` (one per label) on `scene` at each spp of
+/// `spp_list`, `seeds` renders per point, against `reference` (linear RGB).
+#[allow(clippy::too_many_arguments)] // reason: one flat list of the experiment's inputs
+pub fn measure_settings(
+    scene: &Scene,
+    labels: &[String],
+    settings: &[RenderSettings],
+    spp_list: &[u32],
+    seeds: u32,
+    reference: &[Spectrum],
+    stop: &AtomicBool,
+    log: &dyn Fn(&str),
+) -> Result<Vec<ConvergeSeries>, LabError> {
     let mut series = Vec::new();
-    for (strategy, s) in config.strategies.iter().zip(&settings) {
+    for (label, s) in labels.iter().zip(settings) {
         let mut points = Vec::new();
-        for spp in spp_points(config.max_spp) {
+        for &spp in spp_list {
             let (mut errors, mut time) = (Vec::new(), 0.0);
-            for k in 0..config.seeds {
+            for k in 0..seeds {
                 let run = RenderSettings {
                     spp,
                     seed: round_seed(s.seed, k),
                     ..s.clone()
                 };
-                let out = render_quiet(&scene, &run);
+                let out = render_quiet(scene, &run);
                 time += out.time.as_secs_f64();
-                let e = compare(&out.film.means(), None, &reference.rgb, None);
+                let e = compare(&out.film.means(), None, reference, None);
                 errors.push(e.rel_mse);
             }
             if stop.load(Ordering::Relaxed) {
@@ -141,16 +175,16 @@ pub fn measure(
         let (slope_spp, slope_time) = (fit_log_slope(&by_spp), fit_log_slope(&by_time));
         log(&format!(
             "{}: slope {:.3} (spp), {:.3} (time)",
-            strategy.label, slope_spp, slope_time
+            label, slope_spp, slope_time
         ));
         series.push(ConvergeSeries {
-            label: strategy.label.clone(),
+            label: label.clone(),
             points,
             slope_spp,
             slope_time,
         });
     }
-    Ok((series, reference.description))
+    Ok(series)
 }
 
 /// Measures and writes `index.html`, `converge.csv`, `results.md` and the plots
@@ -168,8 +202,14 @@ pub fn run_converge(
         .clone()
         .unwrap_or_else(|| format!("Convergence on {}", config.scene));
     for (stem, x_label, x_of) in [
-        ("error-vs-spp", "samples per pixel", (|p: &ConvergePoint| p.spp as f64) as fn(&ConvergePoint) -> f64),
-        ("error-vs-time", "render time (s)", |p: &ConvergePoint| p.time),
+        (
+            "error-vs-spp",
+            "samples per pixel",
+            (|p: &ConvergePoint| p.spp as f64) as fn(&ConvergePoint) -> f64,
+        ),
+        ("error-vs-time", "render time (s)", |p: &ConvergePoint| {
+            p.time
+        }),
     ] {
         let plot = LogLogPlot {
             title: format!("relMSE vs {x_label}"),
@@ -178,7 +218,15 @@ pub fn run_converge(
             curves: series
                 .iter()
                 .map(|s| Curve {
-                    label: format!("{} (slope {:.2})", s.label, if stem == "error-vs-spp" { s.slope_spp } else { s.slope_time }),
+                    label: format!(
+                        "{} (slope {:.2})",
+                        s.label,
+                        if stem == "error-vs-spp" {
+                            s.slope_spp
+                        } else {
+                            s.slope_time
+                        }
+                    ),
                     points: s
                         .points
                         .iter()
@@ -207,9 +255,14 @@ pub fn run_converge(
     write_text(&dir.join("converge.csv"), &csv)?;
     let table = Table {
         caption: "Fitted slopes of log relMSE (−1: independent Monte Carlo)".into(),
-        header: ["strategy", "slope vs spp", "slope vs time", "relMSE at max spp"]
-            .map(String::from)
-            .to_vec(),
+        header: [
+            "strategy",
+            "slope vs spp",
+            "slope vs time",
+            "relMSE at max spp",
+        ]
+        .map(String::from)
+        .to_vec(),
         rows: series
             .iter()
             .map(|s| {
@@ -255,7 +308,12 @@ pub fn run_converge(
     write_report(dir, &report)?;
     write_text(
         &dir.join("results.md"),
-        &format!("# {title}\n\n`{}`\n\n{}\n\n{}", report.command, notes.join("\n\n"), table.markdown()),
+        &format!(
+            "# {title}\n\n`{}`\n\n{}\n\n{}",
+            report.command,
+            notes.join("\n\n"),
+            table.markdown()
+        ),
     )?;
     Ok(series)
 }

@@ -43,7 +43,7 @@ pub fn resolve(
 
 /// Mixed into the seed of a rendered reference so its streams differ from every
 /// strategy's.
-pub const REFERENCE_SEED_SALT: u64 = 0x5eed_0f_4ef_e4e4c3;
+pub const REFERENCE_SEED_SALT: u64 = 0x05ee_d0f4_efe4_e4c3;
 
 /// Where the reference comes from.
 #[derive(Clone, Debug)]
@@ -108,8 +108,7 @@ pub fn obtain_reference(
             })
         }
         ReferenceSource::Render { strategy, spp } => {
-            let mut settings =
-                resolve(scene, std::slice::from_ref(strategy), base, &[])?.remove(0);
+            let mut settings = resolve(scene, std::slice::from_ref(strategy), base, &[])?.remove(0);
             // Streams of their own: a reference sharing samples with a strategy it judges
             // would favour that strategy.
             settings.seed ^= REFERENCE_SEED_SALT;

@@ -86,9 +86,18 @@ pub const FIGURES: &[Figure] = &[
             scene: "builtin:sphere-near-plane",
             strategies: &[
                 ("p1 area", "--estimator light --light-sampling area"),
-                ("p2 visible area", "--estimator light --light-sampling visible-area"),
-                ("p3 solid angle", "--estimator light --light-sampling solid-angle"),
-                ("p4 geometric", "--estimator light --light-sampling geometric"),
+                (
+                    "p2 visible area",
+                    "--estimator light --light-sampling visible-area",
+                ),
+                (
+                    "p3 solid angle",
+                    "--estimator light --light-sampling solid-angle",
+                ),
+                (
+                    "p4 geometric",
+                    "--estimator light --light-sampling geometric",
+                ),
             ],
             spp: 16,
             reference: &[
@@ -168,7 +177,10 @@ const fn shape_panel(title: &'static str, scene: &'static str) -> Panel {
         scene,
         strategies: &[
             ("area", "--estimator light --light-sampling area"),
-            ("solid angle", "--estimator light --light-sampling solid-angle"),
+            (
+                "solid angle",
+                "--estimator light --light-sampling solid-angle",
+            ),
         ],
         spp: 16,
         reference: &[
@@ -289,9 +301,16 @@ pub fn run_figure(
     let mut links = Vec::new();
     let mut table = Table {
         caption: "Every panel at equal spp; relative efficiency within each panel".into(),
-        header: ["panel", "strategy", "spp", "time (s)", "relMSE", "rel. efficiency"]
-            .map(String::from)
-            .to_vec(),
+        header: [
+            "panel",
+            "strategy",
+            "spp",
+            "time (s)",
+            "relMSE",
+            "rel. efficiency",
+        ]
+        .map(String::from)
+        .to_vec(),
         rows: vec![],
     };
     for config in &configs {
@@ -326,7 +345,12 @@ pub fn run_figure(
     write_report(dir, &report)?;
     write_text(
         &dir.join("results.md"),
-        &format!("# figure {}\n\n{}\n\n{}", figure.name, figure.description, table.markdown()),
+        &format!(
+            "# figure {}\n\n{}\n\n{}",
+            figure.name,
+            figure.description,
+            table.markdown()
+        ),
     )?;
     let json = json!({
         "figure": figure.name,
@@ -355,9 +379,16 @@ fn write_variance_1d(figure: &Figure, dir: &Path) -> Result<(), LabError> {
         caption: format!(
             "{VARIANCE_1D_SAMPLES} samples per row: the smoother f/p, the lower the variance"
         ),
-        header: ["integrand", "density p", "estimate", "exact", "variance of f/p", "std. error"]
-            .map(String::from)
-            .to_vec(),
+        header: [
+            "integrand",
+            "density p",
+            "estimate",
+            "exact",
+            "variance of f/p",
+            "std. error",
+        ]
+        .map(String::from)
+        .to_vec(),
         rows: rows
             .iter()
             .map(|r| {

@@ -37,9 +37,7 @@ impl FromStr for Inset {
             .map_err(|_| format!("bad inset \"{s}\": expected x,y,w,h in pixels"))?;
         match v[..] {
             [x, y, w, h] if w > 0 && h > 0 => Ok(Inset { x, y, w, h }),
-            _ => Err(format!(
-                "bad inset \"{s}\": expected x,y,w,h with w, h ≥ 1"
-            )),
+            _ => Err(format!("bad inset \"{s}\": expected x,y,w,h with w, h ≥ 1")),
         }
     }
 }
@@ -129,14 +127,18 @@ pub fn write_insets(
         }
     }
     let mut rows = Vec::new();
-    let sources = std::iter::once(("reference".to_string(), "reference".to_string(), &reference.rgb))
-        .chain(
-            strategies
-                .iter()
-                .zip(slugs)
-                .zip(images)
-                .map(|((s, slug), img)| (s.label.clone(), slug.clone(), img)),
-        );
+    let sources = std::iter::once((
+        "reference".to_string(),
+        "reference".to_string(),
+        &reference.rgb,
+    ))
+    .chain(
+        strategies
+            .iter()
+            .zip(slugs)
+            .zip(images)
+            .map(|((s, slug), img)| (s.label.clone(), slug.clone(), img)),
+    );
     for (label, slug, rgb) in sources {
         let mut files = Vec::new();
         for (k, r) in insets.iter().enumerate() {
@@ -179,7 +181,15 @@ mod tests {
             }
         }
         let picked = pick_insets(&[image], &reference, w, h, 2);
-        assert_eq!(picked[0], Inset { x: 0, y: 18, w: 4, h: 4 });
+        assert_eq!(
+            picked[0],
+            Inset {
+                x: 0,
+                y: 18,
+                w: 4,
+                h: 4
+            }
+        );
         assert_eq!(picked.len(), 2);
         assert!("1,2,3,4".parse::<Inset>().is_ok());
         assert!("1,2,0,4".parse::<Inset>().is_err() && "1,2".parse::<Inset>().is_err());

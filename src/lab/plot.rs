@@ -97,14 +97,25 @@ fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     if lo > hi {
         return (0.1, 10.0);
     }
-    let (lo, hi) = if lo == hi { (lo * 0.5, hi * 2.0) } else { (lo, hi) };
+    let (lo, hi) = if lo == hi {
+        (lo * 0.5, hi * 2.0)
+    } else {
+        (lo, hi)
+    };
     (lo / 1.3, hi * 1.3)
 }
 
-fn draw<DB: DrawingBackend>(plot: &LogLogPlot, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+fn draw<DB: DrawingBackend>(
+    plot: &LogLogPlot,
+    root: &DrawingArea<DB, Shift>,
+) -> Result<(), String> {
     let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     root.fill(&WHITE).map_err(e)?;
-    let xs = range(plot.curves.iter().flat_map(|c| c.points.iter().map(|p| p.0)));
+    let xs = range(
+        plot.curves
+            .iter()
+            .flat_map(|c| c.points.iter().map(|p| p.0)),
+    );
     let ys = range(
         plot.curves
             .iter()

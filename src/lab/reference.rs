@@ -154,9 +154,8 @@ pub fn render_reference(
                 .is_some_and(|t| start.elapsed() >= t.mul_f64(0.98))
             || merged.stopped
             || stop.load(Ordering::Relaxed);
-        let no_limit = target.rel_error.is_none()
-            && target.max_spp.is_none()
-            && target.max_time.is_none();
+        let no_limit =
+            target.rel_error.is_none() && target.max_spp.is_none() && target.max_time.is_none();
         total = Some(merged);
         if converged || out_of_budget || no_limit {
             let mut output = total.expect("one pass ran");

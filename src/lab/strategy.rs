@@ -41,7 +41,10 @@ impl StrategyError {
     pub fn missing(&self) -> String {
         match self {
             StrategyError::UnknownValue(flag, value, _) => {
-                format!("{} `{value}`", flag.trim_start_matches('-').replace('-', " "))
+                format!(
+                    "{} `{value}`",
+                    flag.trim_start_matches('-').replace('-', " ")
+                )
             }
             StrategyError::UnknownFlag(flag) => format!("flag `{flag}`"),
             StrategyError::Invalid(m) => m.clone(),
@@ -193,7 +196,12 @@ mod tests {
         assert!(Strategy::parse_list("a:--spp 1,a:--spp 2").is_err());
         assert!(Strategy::parse("nonsense").is_err());
         let scene = scene::load("builtin:assignment").unwrap();
-        let base = ["--seed".to_string(), "5".to_string(), "--width".into(), "8".into()];
+        let base = [
+            "--seed".to_string(),
+            "5".to_string(),
+            "--width".into(),
+            "8".into(),
+        ];
         let s = list[1]
             .settings(&scene, &base, &["--spp".into(), "7".into()])
             .unwrap();
