@@ -184,6 +184,7 @@ fn equal_time_compare_and_a_self_contained_report() {
         insets: vec![],
         title: None,
         notes: vec![],
+        links: vec![],
     };
     let stop = AtomicBool::new(false);
     let results = run_compare(&config, &dir, &stop, &|_| {}).unwrap();

@@ -31,7 +31,8 @@ pub struct CompareArgs {
     #[arg(long)]
     pub time: Option<f64>,
     /// Reference image (EXR from `lightlab reference`); default: render one with the
-    /// first strategy at --reference-spp.
+    /// renderer's default strategy (`lightlab render` without strategy flags) at
+    /// --reference-spp.
     #[arg(long)]
     pub reference: Option<PathBuf>,
     /// Samples per pixel of a rendered reference.
@@ -58,19 +59,15 @@ pub fn budget(spp: Option<u32>, time: Option<f64>) -> Result<Budget, CliError> {
     }
 }
 
-/// The reference source: the file, or the first strategy at `spp`.
-pub fn reference_source(
-    file: &Option<PathBuf>,
-    first: &Strategy,
-    spp: u32,
-) -> Result<ReferenceSource, CliError> {
+/// The reference source: the file, or the renderer's default strategy at `spp`.
+pub fn reference_source(file: &Option<PathBuf>, spp: u32) -> Result<ReferenceSource, CliError> {
     if spp == 0 {
         return Err(CliError::input("--reference-spp must be at least 1"));
     }
     Ok(match file {
         Some(p) => ReferenceSource::File(p.clone()),
         None => ReferenceSource::Render {
-            strategy: first.clone(),
+            strategy: Strategy::new("default", ""),
             spp,
         },
     })
@@ -81,13 +78,14 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
     let strategies = Strategy::parse_list(&args.strategies).map_err(CliError::input)?;
     let config = CompareConfig {
         scene: args.scene.clone(),
-        reference: reference_source(&args.reference, &strategies[0], args.reference_spp)?,
+        reference: reference_source(&args.reference, args.reference_spp)?,
         strategies,
         budget: budget(args.spp, args.time)?,
         base_flags: args.render.base_flags(),
         insets: args.inset.clone(),
         title: None,
         notes: vec![],
+        links: vec![],
     };
     install_stop_handler();
     let log = |line: &str| eprintln!("{line}");

@@ -25,7 +25,8 @@ pub struct ConvergeArgs {
     /// Seeds per point (each point averages them; bars show their spread).
     #[arg(long, default_value_t = 4)]
     pub seeds: u32,
-    /// Reference image; default: render one with the first strategy at --reference-spp.
+    /// Reference image; default: render one with the renderer's default strategy at
+    /// --reference-spp.
     #[arg(long)]
     pub reference: Option<PathBuf>,
     /// Samples per pixel of a rendered reference (default: 16 × --max-spp).
@@ -46,7 +47,7 @@ pub fn run(args: &ConvergeArgs) -> Result<(), CliError> {
         .unwrap_or(args.max_spp.saturating_mul(16));
     let config = ConvergeConfig {
         scene: args.scene.clone(),
-        reference: reference_source(&args.reference, &strategies[0], ref_spp)?,
+        reference: reference_source(&args.reference, ref_spp)?,
         strategies,
         max_spp: args.max_spp,
         seeds: args.seeds,

@@ -23,6 +23,9 @@ pub struct FigureArgs {
     /// Override the reference spp.
     #[arg(long)]
     pub reference_spp: Option<u32>,
+    /// Also plot relMSE against spp and time up to this spp (4 seeds per point).
+    #[arg(long)]
+    pub converge: Option<u32>,
     #[command(flatten)]
     pub render: LabRenderArgs,
     /// Output folder.
@@ -36,10 +39,11 @@ pub fn run(args: &FigureArgs) -> Result<(), CliError> {
         base_flags: args.render.base_flags(),
         spp: args.spp,
         reference_spp: args.reference_spp,
+        converge: args.converge,
     };
-    if args.spp == Some(0) || args.reference_spp == Some(0) {
+    if [args.spp, args.reference_spp, args.converge].contains(&Some(0)) {
         return Err(CliError::input(
-            "--spp and --reference-spp must be at least 1",
+            "--spp, --reference-spp and --converge must be at least 1",
         ));
     }
     if args.list {

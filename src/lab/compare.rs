@@ -45,6 +45,8 @@ pub struct CompareConfig {
     pub title: Option<String>,
     /// Paragraphs for the report.
     pub notes: Vec<String>,
+    /// Links shown in the report (label, path relative to the report folder).
+    pub links: Vec<(String, String)>,
 }
 
 /// One strategy's result.
@@ -156,6 +158,8 @@ fn write_outputs(
     let (w, h) = (reference.width, reference.height);
     let slugs: Vec<String> = config.strategies.iter().map(Strategy::slug).collect();
     write_viewer_image(dir, "reference", w, h, &reference.rgb)?;
+    // Linear copy, so later experiments (a figure's convergence plot) reuse the reference.
+    crate::image::io::write_pfm(w, h, &reference.rgb, &dir.join("img/reference.pfm"))?;
     let mut viewer = vec![ViewerImage {
         label: "reference".into(),
         key: "reference".into(),
@@ -232,7 +236,7 @@ fn write_outputs(
                 rows: error_rows,
             },
         ],
-        links: vec![],
+        links: config.links.clone(),
     };
     write_report(dir, &report)?;
     let md = format!(
@@ -287,6 +291,15 @@ pub fn seeds_of(flags: &[String]) -> Vec<u64> {
     vec![seed]
 }
 
+/// A relative efficiency: three decimals, or two significant digits when tiny.
+pub fn format_efficiency(e: f64) -> String {
+    if e >= 0.001 || e == 0.0 {
+        format!("{e:.3}")
+    } else {
+        format!("{e:.2e}")
+    }
+}
+
 /// The results table: spp, time, MSE, relMSE, bias, efficiency.
 pub fn results_table(results: &[StrategyResult]) -> Table {
     Table {
@@ -325,7 +338,7 @@ pub fn results_table(results: &[StrategyResult]) -> Table {
                         ),
                         None => format!("{:+.2}%", 100.0 * r.error.relative_bias),
                     },
-                    format!("{:.3}", r.relative_efficiency),
+                    format_efficiency(r.relative_efficiency),
                 ]
             })
             .collect(),

@@ -10,6 +10,7 @@ use serde_json::json;
 use crate::lab::LabError;
 use crate::lab::budget::Budget;
 use crate::lab::compare::{CompareConfig, StrategyResult, run_compare};
+use crate::lab::converge::{ConvergeConfig, run_converge};
 use crate::lab::experiment::{ReferenceSource, load_scene, resolve};
 use crate::lab::report::{Report, Table, command_line, write_report, write_text};
 use crate::lab::strategy::{Strategy, slug};
@@ -211,6 +212,42 @@ pub struct FigureOptions {
     pub spp: Option<u32>,
     /// Override of the reference spp.
     pub reference_spp: Option<u32>,
+    /// Also plot convergence up to this spp (sub-report `converge/` of each panel).
+    pub converge: Option<u32>,
+}
+
+/// Seeds per point of a figure's convergence plot.
+const CONVERGE_SEEDS: u32 = 4;
+
+/// Runs one panel: the comparison, then (if asked) its convergence plot against the
+/// comparison's reference.
+fn run_panel(
+    config: &CompareConfig,
+    options: &FigureOptions,
+    dir: &Path,
+    stop: &AtomicBool,
+    log: &dyn Fn(&str),
+) -> Result<Vec<StrategyResult>, LabError> {
+    let mut config = config.clone();
+    if options.converge.is_some() {
+        config
+            .links
+            .push(("convergence plots".into(), "converge/index.html".into()));
+    }
+    let results = run_compare(&config, dir, stop, log)?;
+    if let Some(max_spp) = options.converge {
+        let converge = ConvergeConfig {
+            scene: config.scene.clone(),
+            strategies: config.strategies.clone(),
+            max_spp,
+            seeds: CONVERGE_SEEDS,
+            base_flags: config.base_flags.clone(),
+            reference: ReferenceSource::File(dir.join("img/reference.pfm")),
+            title: config.title.as_ref().map(|t| format!("{t}: convergence")),
+        };
+        run_converge(&converge, &dir.join("converge"), stop, log)?;
+    }
+    Ok(results)
 }
 
 /// Checks that every scene and strategy of `figure` exists in this build and returns the
@@ -265,8 +302,13 @@ pub fn plan(figure: &Figure, options: &FigureOptions) -> Result<Vec<CompareConfi
                 spp: options.reference_spp.unwrap_or(panel.reference_spp),
             },
             insets: vec![],
-            title: Some(format!("{}: {}", figure.name, panel.title)),
+            title: Some(if panels.len() == 1 {
+                format!("figure {}", figure.name)
+            } else {
+                format!("figure {}: {}", figure.name, panel.title)
+            }),
             notes: vec![format!("Figure {}: {}.", figure.name, figure.description)],
+            links: vec![],
         });
     }
     if missing.is_empty() {
@@ -294,7 +336,7 @@ pub fn run_figure(
     }
     let configs = plan(figure, options)?;
     if configs.len() == 1 {
-        let results = run_compare(&configs[0], dir, stop, log)?;
+        let results = run_panel(&configs[0], options, dir, stop, log)?;
         return Ok(vec![(figure.name.to_string(), results)]);
     }
     let mut all = Vec::new();
@@ -313,9 +355,12 @@ pub fn run_figure(
         .to_vec(),
         rows: vec![],
     };
-    for config in &configs {
-        let name = slug(config.title.as_deref().unwrap_or("panel"));
-        let results = run_compare(config, &dir.join(&name), stop, log)?;
+    let FigureKind::Panels(panels) = figure.kind else {
+        return Ok(all);
+    };
+    for (config, panel) in configs.iter().zip(panels.iter()) {
+        let name = slug(panel.title);
+        let results = run_panel(config, options, &dir.join(&name), stop, log)?;
         for r in &results {
             table.rows.push(vec![
                 config.scene.clone(),
@@ -323,7 +368,7 @@ pub fn run_figure(
                 r.spp.to_string(),
                 format!("{:.3}", r.time.as_secs_f64()),
                 format!("{:.4e}", r.error.rel_mse),
-                format!("{:.3}", r.relative_efficiency),
+                crate::lab::compare::format_efficiency(r.relative_efficiency),
             ]);
         }
         links.push((
