@@ -4,9 +4,10 @@
 //! A timed render runs rounds with decorrelated seeds (round 0 uses the strategy's own
 //! seed) and merges their films (Chan et al. 1979, `Film::merge`): independent
 //! unbiased estimates, so the merged image is unbiased with the pooled variance. Each
-//! round asks for about half of the time left at the speed measured so far, so the total
-//! converges to the budget from below; rounds stop when less than half a sample per pixel
-//! of time is left.
+//! round asks for about a quarter of the time left at the speed measured so far, so the
+//! total converges to the budget from below; rounds stop when less than half a sample per
+//! pixel of time is left, or when a watcher thread signals the deadline (`render` then
+//! finishes its current internal round, an eighth of the call).
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
@@ -141,8 +142,9 @@ fn rounds(
         if stopped || left < 0.5 * per_spp {
             break;
         }
-        // Half the time left, at least one spp (converges to the budget from below).
-        spp_next = ((0.5 * left / per_spp).ceil() as u32).max(1);
+        // A quarter of the time left, at least one spp: converges to the budget from
+        // below, and a round cut by the deadline overshoots by at most an eighth of it.
+        spp_next = ((0.25 * left / per_spp).ceil() as u32).max(1);
     }
     total.expect("at least one round ran")
 }

@@ -9,7 +9,7 @@ use crate::scene::SceneError;
 #[derive(Debug, thiserror::Error)]
 pub enum LabError {
     /// The scene does not load (for a built-in: not built yet, or a typo).
-    #[error("scene {spec}: {error}")]
+    #[error("{error}")]
     Scene {
         /// The scene as given.
         spec: String,
