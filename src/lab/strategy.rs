@@ -3,8 +3,8 @@
 //! [`StrategyArgs`] works here without a second list.
 //!
 //! A strategy is written `label:flags` (`"light:--estimator light --light-sampling area"`),
-//! or as a preset: any estimator name (`cosine` means `--estimator cosine`) or `default`
-//! (the scene's defaults).
+//! or as a preset: any estimator name (`cosine` means `--estimator cosine`), any sampler
+//! name (`sobol` means `--sampler sobol`), or `default` (the scene's defaults).
 
 use std::fmt;
 
@@ -14,6 +14,7 @@ use clap::error::{ContextKind, ContextValue, ErrorKind};
 use crate::cli::StrategyArgs;
 use crate::integrator::EstimatorKind;
 use crate::render::RenderSettings;
+use crate::sampling::SamplerKind;
 use crate::scene::Scene;
 
 /// A labelled set of render flags.
@@ -79,7 +80,7 @@ impl Strategy {
         }
     }
 
-    /// Parses `label:flags` or a preset name (an estimator name, or `default`).
+    /// Parses `label:flags` or a preset name (an estimator or sampler name, or `default`).
     pub fn parse(text: &str) -> Result<Strategy, String> {
         let text = text.trim();
         if let Some((label, flags)) = text.split_once(':') {
@@ -92,10 +93,13 @@ impl Strategy {
         if text == "default" {
             return Ok(Strategy::new("default", ""));
         }
+        if let Ok(kind) = text.parse::<SamplerKind>() {
+            return Ok(Strategy::new(text, format!("--sampler {kind}")));
+        }
         match text.parse::<EstimatorKind>() {
             Ok(kind) => Ok(Strategy::new(text, format!("--estimator {kind}"))),
             Err(e) => Err(format!(
-                "strategy \"{text}\" is neither LABEL:FLAGS nor a preset (default, or an {e})"
+                "strategy \"{text}\" is neither LABEL:FLAGS nor a preset (default, a sampler name, or an {e})"
             )),
         }
     }
@@ -195,6 +199,10 @@ mod tests {
         assert_eq!(list[1].label, "light");
         assert!(Strategy::parse_list("a:--spp 1,a:--spp 2").is_err());
         assert!(Strategy::parse("nonsense").is_err());
+        assert_eq!(
+            Strategy::parse("sobol").unwrap(),
+            Strategy::new("sobol", "--sampler sobol")
+        );
         let scene = scene::load("builtin:assignment").unwrap();
         let base = [
             "--seed".to_string(),

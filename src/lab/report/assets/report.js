@@ -148,8 +148,27 @@
     zoomAt(1 / view.scale, stage.clientWidth / 2, stage.clientHeight / 2);
   });
 
-  picks[0].value = "0";
-  picks[1].value = String(Math.min(1, list.length - 1));
+  // The starting view can be set in the address: #a=0&b=2&mode=flip&exposure=1.5&split=30.
+  var start = {};
+  location.hash.replace(/^#/, "").split("&").forEach(function (pair) {
+    var kv = pair.split("=");
+    if (kv.length === 2) { start[kv[0]] = decodeURIComponent(kv[1]); }
+  });
+  function index(v, fallback) {
+    var i = parseInt(v, 10);
+    return i >= 0 && i < list.length ? String(i) : String(fallback);
+  }
+  picks[0].value = index(start.a, 0);
+  picks[1].value = index(start.b, Math.min(1, list.length - 1));
+  if (start.mode === "flip") {
+    view.mode = "flip";
+    document.querySelector("input[name=mode][value=flip]").checked = true;
+  }
+  if (start.exposure !== undefined && isFinite(Number(start.exposure))) {
+    exposure.value = start.exposure;
+    exposureValue.textContent = Number(exposure.value).toFixed(1);
+  }
+  if (start.split !== undefined && isFinite(Number(start.split))) { split.value = start.split; }
   draw(0);
   draw(1);
   fit();
