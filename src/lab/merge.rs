@@ -1,7 +1,7 @@
 //! `merge`: combines the EXR parts of a render split with `--pass I/N` into the image a
 //! single run would have made. Each part stores per pixel the mean, the variance of the
 //! mean and (in its header) the sample count, which recover Welford's statistics
-//! (count n, mean, M2 = Var[mean]·n·(n − 1)); parts combine by Chan et al.'s pairwise
+//! (count n, mean, M2 = Var(mean)·n·(n − 1)); parts combine by Chan et al.'s pairwise
 //! update (1979), so the merge is sample-weighted and keeps the variance.
 
 use std::path::{Path, PathBuf};
@@ -41,7 +41,7 @@ pub fn film_from_image(image: &LoadedImage, path: &Path) -> Result<Film, MergeEr
         .map(|(&mean, &var)| PixelStats {
             count: spp,
             mean,
-            // Var[mean] = M2 / ((n − 1) n)
+            // Var(mean) = M2 / ((n − 1) n)
             m2: if spp > 1 {
                 var * (n * (n - 1.0))
             } else {

@@ -2,10 +2,10 @@
 //! budget runs out.
 //!
 //! Two error estimates come from the film's per-pixel variance of the mean:
-//! - the relative standard error of the image mean, √(Σ Var[mean]) / Σ mean over pixels
+//! - the relative standard error of the image mean, √(Σ Var(mean)) / Σ mean over pixels
 //!   and channels (the error of the image's average brightness);
 //! - the 90th percentile over pixels of the relative standard error of each pixel,
-//!   √(Var[mean]) / (mean + 0.01·image mean), channel-averaged (the error a viewer
+//!   √(Var(mean)) / (mean + 0.01·image mean), channel-averaged (the error a viewer
 //!   sees: most pixels are at least this good). The 0.01·image mean keeps black pixels
 //!   from making the quantile infinite.
 //!
@@ -180,7 +180,7 @@ mod tests {
     #[test]
     fn error_estimate_of_a_known_film() {
         let mut film = Film::new(2, 1);
-        // Pixel 0: samples 1 and 3 (mean 2, Var[mean] = 2/2 = 1); pixel 1: constant 2.
+        // Pixel 0: samples 1 and 3 (mean 2, Var(mean) = 2/2 = 1); pixel 1: constant 2.
         film.pixels[0].add(Spectrum::splat(1.0));
         film.pixels[0].add(Spectrum::splat(3.0));
         film.pixels[1].add(Spectrum::splat(2.0));
