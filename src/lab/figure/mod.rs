@@ -14,7 +14,12 @@ use crate::lab::converge::{ConvergeConfig, run_converge};
 use crate::lab::experiment::{ReferenceSource, load_scene, resolve};
 use crate::lab::report::{Report, Table, command_line, write_report, write_text};
 use crate::lab::strategy::{Strategy, slug};
-use crate::lab::variance_1d::variance_table;
+
+mod catalogue;
+mod variance_1d;
+
+pub use catalogue::FIGURES;
+use variance_1d::write_variance_1d;
 
 /// One comparison of a figure.
 #[derive(Clone, Copy, Debug)]
@@ -51,145 +56,6 @@ pub struct Figure {
     pub description: &'static str,
     /// Its content.
     pub kind: FigureKind,
-}
-
-const LIGHT_REF: &[&str] = &["--estimator mis", "--estimator light"];
-
-/// Every figure, in lecture order.
-pub const FIGURES: &[Figure] = &[
-    Figure {
-        name: "variance-1d",
-        description: "∫cos x vs ∫4cos¹⁶x on [0, π/2]: uniform, cosine and tabulated densities",
-        kind: FigureKind::Variance1d,
-    },
-    Figure {
-        name: "assignment",
-        description: "uniform hemisphere vs cosine vs BRDF vs light sampling on the assignment scene",
-        kind: FigureKind::Panels(&[Panel {
-            title: "assignment",
-            scene: "builtin:assignment",
-            strategies: &[
-                ("uniform hemisphere", "--estimator hemisphere"),
-                ("cosine", "--estimator cosine"),
-                ("BRDF", "--estimator bsdf"),
-                ("light", "--estimator light"),
-            ],
-            spp: 16,
-            reference: LIGHT_REF,
-            reference_spp: 1024,
-        }]),
-    },
-    Figure {
-        name: "sphere-light",
-        description: "a spherical light near a plane: p1 area, p2 visible area, p3 solid angle, p4 ∝ G",
-        kind: FigureKind::Panels(&[Panel {
-            title: "sphere-light",
-            scene: "builtin:sphere-near-plane",
-            strategies: &[
-                ("p1 area", "--estimator light --light-sampling area"),
-                (
-                    "p2 visible area",
-                    "--estimator light --light-sampling visible-area",
-                ),
-                (
-                    "p3 solid angle",
-                    "--estimator light --light-sampling solid-angle",
-                ),
-                (
-                    "p4 geometric",
-                    "--estimator light --light-sampling geometric",
-                ),
-            ],
-            spp: 16,
-            reference: &[
-                "--estimator mis --light-sampling solid-angle",
-                "--estimator light --light-sampling solid-angle",
-            ],
-            reference_spp: 1024,
-        }]),
-    },
-    Figure {
-        name: "lights-shapes",
-        description: "uniform area vs solid-angle sampling of a rectangle, a triangle and a polygon",
-        kind: FigureKind::Panels(&[
-            shape_panel("rectangle", "builtin:rectangle-light"),
-            shape_panel("triangle", "builtin:triangle-light"),
-            shape_panel("polygon", "builtin:polygon-light"),
-        ]),
-    },
-    Figure {
-        name: "many-lights",
-        description: "uniform vs power vs adaptive vs BVH light selection, shirley-100 at 49 spp",
-        kind: FigureKind::Panels(&[Panel {
-            title: "many-lights",
-            scene: "builtin:shirley-100",
-            strategies: &[
-                ("uniform", "--estimator light --light-select uniform"),
-                ("power", "--estimator light --light-select power"),
-                ("adaptive", "--estimator light --light-select adaptive"),
-                ("bvh", "--estimator light --light-select bvh"),
-            ],
-            spp: 49,
-            reference: &[
-                "--estimator mis --light-select bvh",
-                "--estimator light --light-select bvh",
-            ],
-            reference_spp: 2048,
-        }]),
-    },
-    Figure {
-        name: "veach-mis",
-        description: "Veach's plates: light sampling vs BRDF sampling vs MIS",
-        kind: FigureKind::Panels(&[Panel {
-            title: "veach-mis",
-            scene: "builtin:veach-mis",
-            strategies: &[
-                ("light", "--estimator light"),
-                ("BRDF", "--estimator bsdf"),
-                ("MIS", "--estimator mis"),
-            ],
-            spp: 16,
-            reference: &["--estimator mis"],
-            reference_spp: 1024,
-        }]),
-    },
-    Figure {
-        name: "envmap",
-        description: "environment lighting: cosine vs BRDF vs environment-map sampling vs MIS",
-        kind: FigureKind::Panels(&[Panel {
-            title: "envmap",
-            scene: "builtin:envmap",
-            strategies: &[
-                ("cosine", "--estimator cosine"),
-                ("BRDF", "--estimator bsdf"),
-                ("light (envmap)", "--estimator light"),
-                ("MIS", "--estimator mis"),
-            ],
-            spp: 16,
-            reference: &["--estimator mis"],
-            reference_spp: 1024,
-        }]),
-    },
-];
-
-const fn shape_panel(title: &'static str, scene: &'static str) -> Panel {
-    Panel {
-        title,
-        scene,
-        strategies: &[
-            ("area", "--estimator light --light-sampling area"),
-            (
-                "solid angle",
-                "--estimator light --light-sampling solid-angle",
-            ),
-        ],
-        spp: 16,
-        reference: &[
-            "--estimator mis --light-sampling solid-angle",
-            "--estimator light --light-sampling solid-angle",
-        ],
-        reference_spp: 1024,
-    }
 }
 
 /// The figure named `name`.
@@ -412,72 +278,6 @@ pub fn run_figure(
         &serde_json::to_string_pretty(&json).map_err(|e| LabError::Input(e.to_string()))?,
     )?;
     Ok(all)
-}
-
-/// Samples per strategy in the 1D table.
-const VARIANCE_1D_SAMPLES: usize = 100_000;
-
-fn write_variance_1d(figure: &Figure, dir: &Path) -> Result<(), LabError> {
-    let seed = 1;
-    let rows = variance_table(VARIANCE_1D_SAMPLES, seed);
-    let table = Table {
-        caption: format!(
-            "{VARIANCE_1D_SAMPLES} samples per row: the smoother f/p, the lower the variance"
-        ),
-        header: [
-            "integrand",
-            "density p",
-            "estimate",
-            "exact",
-            "variance of f/p",
-            "std. error",
-        ]
-        .map(String::from)
-        .to_vec(),
-        rows: rows
-            .iter()
-            .map(|r| {
-                vec![
-                    r.integrand.to_string(),
-                    r.strategy.to_string(),
-                    format!("{:.5}", r.estimate),
-                    format!("{:.5}", r.exact),
-                    format!("{:.4e}", r.variance),
-                    format!("{:.2e}", r.standard_error()),
-                ]
-            })
-            .collect(),
-    };
-    let report = Report {
-        title: format!("figure {}", figure.name),
-        command: command_line(),
-        seeds: vec![seed],
-        notes: vec![
-            figure.description.to_string(),
-            "Sampling with p = cos x makes f/p constant for ∫cos (zero variance) but not for ∫4cos¹⁶, which is far more peaked than p: importance sampling helps only as far as p follows f.".into(),
-        ],
-        tables: vec![table.clone()],
-        ..Default::default()
-    };
-    write_report(dir, &report)?;
-    write_text(
-        &dir.join("results.md"),
-        &format!("# figure {}\n\n{}\n", figure.name, table.markdown()),
-    )?;
-    let json = json!({
-        "figure": figure.name,
-        "command": report.command,
-        "lightlab_version": crate::lab::report::VERSION,
-        "rows": rows.iter().map(|r| json!({
-            "integrand": r.integrand, "strategy": r.strategy, "estimate": r.estimate,
-            "exact": r.exact, "variance": r.variance, "samples": r.samples,
-        })).collect::<Vec<_>>(),
-    });
-    write_text(
-        &dir.join("results.json"),
-        &serde_json::to_string_pretty(&json).map_err(|e| LabError::Input(e.to_string()))?,
-    )?;
-    Ok(())
 }
 
 #[cfg(test)]
