@@ -6,7 +6,7 @@ use glam::Vec3;
 use lightlab::bsdf::{Diffuse, Material};
 use lightlab::geometry::Ray;
 use lightlab::image::Film;
-use lightlab::integrator::{Estimator, EstimatorKind};
+use lightlab::integrator::{Estimator, EstimatorKind, MisHeuristic, MisSettings};
 use lightlab::light::select::LightSelect;
 use lightlab::math::{PI, Spectrum};
 use lightlab::render::camera::Camera;
@@ -15,37 +15,10 @@ use lightlab::sampling::{Rng32, SamplerKind};
 use lightlab::scene::builder::Emission;
 use lightlab::scene::{SceneBuilder, builtin};
 
-const RADIANCE: f32 = 2.0;
+mod common;
+use common::lambert::lambert_irradiance;
 
-/// Irradiance at x (normal n) from a polygon of uniform radiance L, clipped to the
-/// upper hemisphere: E = (L/2)·|Σ γ_i · n·(v̂_i × v̂_{i+1})/|v̂_i × v̂_{i+1}||
-/// (Lambert 1760; see Arvo 1995, "Applications of Irradiance Tensors").
-fn lambert_irradiance(x: Vec3, n: Vec3, polygon: &[Vec3], radiance: f32) -> f64 {
-    // Sutherland–Hodgman clip against the tangent plane n·(v − x) ≥ 0.
-    let mut clipped = Vec::new();
-    for i in 0..polygon.len() {
-        let (a, b) = (polygon[i], polygon[(i + 1) % polygon.len()]);
-        let (da, db) = (n.dot(a - x), n.dot(b - x));
-        if da >= 0.0 {
-            clipped.push(a);
-        }
-        if (da >= 0.0) != (db >= 0.0) {
-            clipped.push(a + (b - a) * (da / (da - db)));
-        }
-    }
-    let mut sum = 0.0f64;
-    for i in 0..clipped.len() {
-        let a = (clipped[i] - x).as_dvec3().normalize();
-        let b = (clipped[(i + 1) % clipped.len()] - x)
-            .as_dvec3()
-            .normalize();
-        let c = a.cross(b);
-        if c.length() > 0.0 {
-            sum += a.dot(b).clamp(-1.0, 1.0).acos() * n.as_dvec3().dot(c.normalize());
-        }
-    }
-    0.5 * radiance as f64 * sum.abs()
-}
+const RADIANCE: f32 = 2.0;
 
 #[test]
 fn irradiance_under_a_rectangle_matches_lambert_for_every_estimator() {
@@ -106,9 +79,14 @@ fn irradiance_under_a_rectangle_matches_lambert_for_every_estimator() {
 }
 
 fn render_assignment(estimator: EstimatorKind, spp: u32, seed: u64) -> Film {
+    render_assignment_mis(estimator, MisSettings::default(), spp, seed)
+}
+
+fn render_assignment_mis(estimator: EstimatorKind, mis: MisSettings, spp: u32, seed: u64) -> Film {
     let scene = builtin::build("assignment").expect("scene");
     let mut s = RenderSettings::for_scene(&scene);
     s.estimator = estimator;
+    s.mis = mis;
     s.spp = spp;
     s.seed = seed;
     s.sampler = SamplerKind::Independent;
@@ -147,13 +125,24 @@ fn all_estimators_agree_on_the_assignment_scene() {
     // sharp-lobe blocks then sit 4-5 "standard errors" away from every directional estimator.
     let reference = blocks(&render_assignment(EstimatorKind::Bsdf, 16384, 1));
     let mut failures = Vec::new();
-    for kind in EstimatorKind::ALL {
-        let spp = if kind == EstimatorKind::Light {
-            256
-        } else {
-            8192
+    let mut runs: Vec<(String, EstimatorKind, MisSettings)> = EstimatorKind::ALL
+        .iter()
+        .map(|&k| (k.to_string(), k, MisSettings::default()))
+        .collect();
+    for heuristic in [MisHeuristic::Balance, MisHeuristic::OneSample] {
+        let mis = MisSettings {
+            heuristic,
+            light_samples: 2,
+            bsdf_samples: 1,
         };
-        let test = blocks(&render_assignment(kind, spp, 7));
+        runs.push((format!("mis {heuristic} 2+1"), EstimatorKind::Mis, mis));
+    }
+    for (kind, estimator, mis) in runs {
+        let spp = match estimator {
+            EstimatorKind::Light | EstimatorKind::Mis => 512,
+            _ => 8192,
+        };
+        let test = blocks(&render_assignment_mis(estimator, mis, spp, 7));
         let worst = test
             .iter()
             .zip(&reference)

@@ -3,7 +3,7 @@
 use clap::Args;
 
 use super::CliError;
-use crate::integrator::EstimatorKind;
+use crate::integrator::{EstimatorKind, MisHeuristic};
 use crate::light::LightSampling;
 use crate::light::select::LightSelect;
 use crate::render::{Pass, RenderSettings};
@@ -13,9 +13,18 @@ use crate::scene::Scene;
 /// Strategy, sampler and budget flags.
 #[derive(Args, Debug, Clone, Default)]
 pub struct StrategyArgs {
-    /// Direct-lighting estimator: hemisphere, hemisphere-rejection, cosine, bsdf, light.
+    /// Direct-lighting estimator: hemisphere, hemisphere-rejection, cosine, bsdf, light, mis.
     #[arg(long)]
     pub estimator: Option<EstimatorKind>,
+    /// MIS weighting: balance, power (β = 2), one-sample (balance, one strategy per sample).
+    #[arg(long)]
+    pub mis: Option<MisHeuristic>,
+    /// Light samples per estimate of the `mis` estimator.
+    #[arg(long)]
+    pub light_samples: Option<u32>,
+    /// BSDF samples per estimate of the `mis` estimator.
+    #[arg(long)]
+    pub bsdf_samples: Option<u32>,
     /// Area-light sampling strategy: area.
     #[arg(long)]
     pub light_sampling: Option<LightSampling>,
@@ -48,6 +57,26 @@ impl StrategyArgs {
         let mut s = RenderSettings::for_scene(scene);
         if let Some(v) = self.estimator {
             s.estimator = v;
+        }
+        if let Some(v) = self.mis {
+            s.mis.heuristic = v;
+        }
+        for (flag, given, count) in [
+            (
+                "--light-samples",
+                self.light_samples,
+                &mut s.mis.light_samples,
+            ),
+            ("--bsdf-samples", self.bsdf_samples, &mut s.mis.bsdf_samples),
+        ] {
+            if let Some(v) = given {
+                if !(1..=1024).contains(&v) {
+                    return Err(CliError::input(format!(
+                        "{flag} must be in 1..=1024, not {v}"
+                    )));
+                }
+                *count = v;
+            }
         }
         if let Some(v) = self.light_sampling {
             s.light_sampling = v;

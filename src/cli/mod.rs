@@ -1,6 +1,7 @@
 //! The command line: parses arguments and calls the library, one file per subcommand.
 
 mod args;
+mod bench;
 mod compare;
 mod converge;
 mod diff;
@@ -73,6 +74,8 @@ enum Command {
     Merge(merge::MergeArgs),
     /// Reproduce one of the lecture's comparisons (`--list` names them).
     Figure(figure::FigureArgs),
+    /// Throughput figures: rays/s, BVH build time, samples/s per estimator (medians).
+    Bench(bench::BenchArgs),
 }
 
 /// Runs the CLI on the process arguments and returns the exit code.
@@ -94,6 +97,7 @@ pub fn main() -> i32 {
         Command::Converge(a) => converge::run(&a),
         Command::Merge(a) => merge::run(&a),
         Command::Figure(a) => figure::run(&a),
+        Command::Bench(a) => bench::run(&a),
     };
     match result {
         Ok(()) => 0,

@@ -42,7 +42,9 @@ pub(super) fn estimate(
             Some(s) if s.pdf > 0.0 => (s.w_in, s.f * s.w_in.z.abs() / s.pdf),
             _ => return Spectrum::ZERO,
         },
-        EstimatorKind::Light => unreachable!("the light estimator is not directional"),
+        EstimatorKind::Light | EstimatorKind::Mis => {
+            unreachable!("the light and MIS estimators are not directional")
+        }
     };
     if weight == Spectrum::ZERO {
         return Spectrum::ZERO;
@@ -51,6 +53,6 @@ pub(super) fn estimate(
     let ray = Ray::new(offset_origin(hit.p, hit.ng, w_world), w_world);
     match scene.geometry.intersect(&ray, f32::INFINITY) {
         Some(y) => weight * emitted_at(scene, &y, -w_world),
-        None => Spectrum::ZERO,
+        None => weight * scene.escaped(w_world),
     }
 }

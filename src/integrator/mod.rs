@@ -6,6 +6,9 @@
 
 mod directional;
 mod light;
+pub mod mis;
+
+pub use mis::{MisHeuristic, MisSettings};
 
 use glam::Vec3;
 
@@ -30,6 +33,8 @@ named_enum! {
         Bsdf => "bsdf",
         /// A point on a light (area form), one shadow ray.
         Light => "light",
+        /// Light and BSDF sampling combined by multiple importance sampling.
+        Mis => "mis",
     }
 }
 
@@ -38,8 +43,10 @@ named_enum! {
 pub struct Estimator {
     /// The strategy.
     pub kind: EstimatorKind,
-    /// Chooses a light for the light estimator.
+    /// Chooses a light for the light and MIS estimators.
     pub selector: Selector,
+    /// Sample counts and weighting of the MIS estimator.
+    pub mis: MisSettings,
 }
 
 impl Estimator {
@@ -49,14 +56,21 @@ impl Estimator {
         Estimator {
             kind,
             selector: Selector::new(select, &powers),
+            mis: MisSettings::default(),
         }
+    }
+
+    /// The same estimator with the MIS settings `mis`.
+    pub fn with_mis(mut self, mis: MisSettings) -> Estimator {
+        self.mis = mis;
+        self
     }
 
     /// Radiance along a camera ray: emission seen directly plus one estimate of direct
     /// illumination at the first hit.
     pub fn radiance(&self, scene: &Scene, ray: &Ray, src: &mut impl Uniform) -> Spectrum {
         let Some(hit) = scene.geometry.intersect(ray, f32::INFINITY) else {
-            return Spectrum::ZERO;
+            return scene.escaped(ray.d.normalize()); // the background: the environment
         };
         let w_out = -ray.d.normalize();
         emitted_at(scene, &hit, w_out) + self.direct(scene, &hit, w_out, src)
@@ -83,6 +97,17 @@ impl Estimator {
         match self.kind {
             EstimatorKind::Light => {
                 light::estimate(scene, &self.selector, &at, hit, material, w_out_local, src)
+            }
+            EstimatorKind::Mis => {
+                let ctx = mis::Context {
+                    scene,
+                    selector: &self.selector,
+                    at: &at,
+                    hit,
+                    material,
+                    w_out: w_out_local,
+                };
+                mis::estimate(&ctx, self.mis, src)
             }
             kind => directional::estimate(scene, kind, hit, material, w_out_local, src),
         }

@@ -1,7 +1,9 @@
-//! Experiments: the lecture's 1D variance demo and warp plots; references, equal-spp and
-//! equal-time comparisons, convergence plots, the HTML report, the lecture's figures, and
-//! the merge of render passes. The lab drives `render`, never the reverse.
+//! Experiments: the lecture's 1D variance demo and warp plots; throughput benchmarks;
+//! references, equal-spp and equal-time comparisons, convergence plots, the HTML report,
+//! the lecture's figures, and the merge of render passes. The lab drives `render`, never
+//! the reverse.
 
+pub mod bench;
 pub mod budget;
 pub mod compare;
 pub mod converge;

@@ -48,7 +48,8 @@ pub struct Control<'a> {
 pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -> RenderOutput {
     let camera = settings.camera(scene);
     let (w, h) = (camera.width, camera.height);
-    let estimator = Estimator::new(scene, settings.estimator, settings.light_select);
+    let estimator =
+        Estimator::new(scene, settings.estimator, settings.light_select).with_mis(settings.mis);
     let (first, last) = settings.pass.sample_range(settings.spp);
     let mut film = Film::new(w, h);
     let tiles = tiles(w, h);

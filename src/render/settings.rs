@@ -4,7 +4,7 @@
 use std::fmt;
 use std::str::FromStr;
 
-use crate::integrator::EstimatorKind;
+use crate::integrator::{EstimatorKind, MisSettings};
 use crate::light::LightSampling;
 use crate::light::select::LightSelect;
 use crate::render::camera::Camera;
@@ -63,6 +63,8 @@ impl FromStr for Pass {
 pub struct RenderSettings {
     /// Direct-lighting estimator.
     pub estimator: EstimatorKind,
+    /// Heuristic and sample counts of the `mis` estimator.
+    pub mis: MisSettings,
     /// Sampling strategy of area lights.
     pub light_sampling: LightSampling,
     /// Light selection.
@@ -80,11 +82,13 @@ pub struct RenderSettings {
 }
 
 impl RenderSettings {
-    /// The defaults for `scene`: the light estimator with uniform-area light sampling,
-    /// uniform selection and the Sobol sampler at the scene's spp.
+    /// The defaults for `scene`: MIS (one light and one BSDF sample, power heuristic) with
+    /// uniform-area light sampling, uniform selection and the Sobol sampler at the scene's
+    /// spp.
     pub fn for_scene(scene: &Scene) -> RenderSettings {
         RenderSettings {
-            estimator: EstimatorKind::Light,
+            estimator: EstimatorKind::Mis,
+            mis: MisSettings::default(),
             light_sampling: LightSampling::Area,
             light_select: LightSelect::Uniform,
             sampler: SamplerKind::Sobol,
@@ -106,8 +110,12 @@ impl RenderSettings {
     /// The strategy flags that reproduce these settings on the command line.
     pub fn flags(&self) -> String {
         format!(
-            "--estimator {} --light-sampling {} --light-select {} --sampler {} --spp {} --seed {}",
+            "--estimator {} --mis {} --light-samples {} --bsdf-samples {} --light-sampling {} \
+             --light-select {} --sampler {} --spp {} --seed {}",
             self.estimator,
+            self.mis.heuristic,
+            self.mis.light_samples,
+            self.mis.bsdf_samples,
             self.light_sampling,
             self.light_select,
             self.sampler,

@@ -26,8 +26,22 @@ pub struct Scene {
     pub materials: Vec<Material>,
     /// Lights, indexed by primitives that emit.
     pub lights: Vec<Light>,
+    /// Index in `lights` of the environment (light at infinity), if any.
+    pub environment: Option<usize>,
     /// Default samples per pixel.
     pub spp: u32,
+}
+
+impl Scene {
+    /// Radiance arriving along a ray that leaves the scene in direction `w` (unit): the
+    /// environment's, or zero.
+    #[inline]
+    pub fn escaped(&self, w: glam::Vec3) -> crate::math::Spectrum {
+        match self.environment {
+            Some(i) => self.lights[i].infinite_radiance(w),
+            None => crate::math::Spectrum::ZERO,
+        }
+    }
 }
 
 /// Loads `builtin:NAME` (the only source until scene files land).

@@ -1,6 +1,8 @@
 //! Built-in scenes: each is a figure the lecture draws, so students can reproduce it.
 
 mod assignment;
+mod envmap;
+mod veach_mis;
 
 use super::{Scene, SceneError};
 
@@ -15,11 +17,23 @@ pub struct Builtin {
 }
 
 /// Every built-in scene; the first is the default scene.
-pub const BUILTINS: &[Builtin] = &[Builtin {
-    name: "assignment",
-    description: "one small area light over diffuse and Phong (n = 10, 100, 1000) spheres: hemisphere vs BRDF vs light sampling",
-    build: assignment::build,
-}];
+pub const BUILTINS: &[Builtin] = &[
+    Builtin {
+        name: "assignment",
+        description: "one small area light over diffuse and Phong (n = 10, 100, 1000) spheres: hemisphere vs BRDF vs light sampling",
+        build: assignment::build,
+    },
+    Builtin {
+        name: "veach-mis",
+        description: "Veach's four plates of rising gloss (Phong n = 30 … 30000) and four equal-power sphere lights: light vs BSDF sampling vs MIS",
+        build: veach_mis::build,
+    },
+    Builtin {
+        name: "envmap",
+        description: "diffuse and glossy spheres under a procedural sky with a small, very bright sun: environment-map sampling",
+        build: envmap::build,
+    },
+];
 
 /// The scene `render` draws when none is given.
 pub const DEFAULT_SCENE: &str = "builtin:assignment";

@@ -1,0 +1,202 @@
+//! The `mis` estimator: light sampling and BSDF sampling combined by multiple importance
+//! sampling (Veach & Guibas 1995).
+//!
+//! Multi-sample model (Veach's thesis eq. 9.4): N light samples and M BSDF samples,
+//! F = Σ_i (1/n_i) Σ_j w_i(X_ij) f(X_ij) / p_i(X_ij), with balance or power weights on the
+//! effective densities n_i·p_i. One-sample model (thesis §9.2.4): choose light sampling with
+//! probability c_L = N/(N+M), else BSDF sampling, and score f / Σ_k c_k p_k (the balance
+//! heuristic divided by the choice probability).
+//!
+//! The light strategy's density of a direction is p_L(ω) = pmf(light | x) · p_light(ω | x):
+//! selection probability times the light's own solid-angle density. A BSDF-sampled ray that
+//! reaches an emitter asks the selector and the light for exactly that product. Samples from
+//! a delta distribution (point lights, mirror lobes) can come from one strategy only, and get
+//! weight 1 from it.
+
+mod weights;
+
+pub use weights::{MisHeuristic, mis_weight};
+
+use glam::Vec3;
+
+use super::{emitted_at, f_cos};
+use crate::bsdf::{Bsdf, Material};
+use crate::geometry::{NO_LIGHT, Ray, SurfaceHit, offset_origin};
+use crate::light::ShadingPoint;
+use crate::light::select::{LightSelector, Selector};
+use crate::math::Spectrum;
+use crate::sampling::Uniform;
+use crate::scene::Scene;
+
+/// How the `mis` estimator spends and weights its samples.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MisSettings {
+    /// Weighting heuristic or the one-sample model.
+    pub heuristic: MisHeuristic,
+    /// Light samples per estimate (N).
+    pub light_samples: u32,
+    /// BSDF samples per estimate (M).
+    pub bsdf_samples: u32,
+}
+
+impl Default for MisSettings {
+    /// One light and one BSDF sample, power heuristic (Veach's recommendation).
+    fn default() -> Self {
+        MisSettings {
+            heuristic: MisHeuristic::Power,
+            light_samples: 1,
+            bsdf_samples: 1,
+        }
+    }
+}
+
+/// The scene and shading context every sample of one estimate shares.
+pub(super) struct Context<'a> {
+    pub scene: &'a Scene,
+    pub selector: &'a Selector,
+    pub at: &'a ShadingPoint,
+    pub hit: &'a SurfaceHit,
+    pub material: &'a Material,
+    /// w_out in the local shading frame.
+    pub w_out: Vec3,
+}
+
+/// One estimate of the `mis` estimator.
+pub(super) fn estimate(ctx: &Context<'_>, mis: MisSettings, src: &mut impl Uniform) -> Spectrum {
+    let (n, m) = (mis.light_samples as f32, mis.bsdf_samples as f32);
+    if mis.heuristic == MisHeuristic::OneSample {
+        let c_light = n / (n + m);
+        let u = src.next_1d();
+        return if u < c_light {
+            light_sample(
+                ctx,
+                src,
+                |p_light, p_bsdf| 1.0 / (c_light * p_light + (1.0 - c_light) * p_bsdf),
+                1.0 / c_light,
+            )
+        } else {
+            bsdf_sample(
+                ctx,
+                src,
+                |p_bsdf, p_light| 1.0 / (c_light * p_light + (1.0 - c_light) * p_bsdf),
+                1.0 / (1.0 - c_light),
+            )
+        };
+    }
+    let h = mis.heuristic;
+    let mut sum = Spectrum::ZERO;
+    for _ in 0..mis.light_samples {
+        sum += light_sample(
+            ctx,
+            src,
+            |pl, pb| mis_weight(h, n * pl, m * pb) / (n * pl),
+            1.0 / n,
+        );
+    }
+    for _ in 0..mis.bsdf_samples {
+        sum += bsdf_sample(
+            ctx,
+            src,
+            |pb, pl| mis_weight(h, m * pb, n * pl) / (m * pb),
+            1.0 / m,
+        );
+    }
+    sum
+}
+
+/// One light sample: `scale(p_light, p_bsdf)` is the factor that multiplies f·cos·Le (the
+/// MIS weight over the density); `delta_scale` multiplies f·cos·Le/pmf for delta lights.
+fn light_sample(
+    ctx: &Context<'_>,
+    src: &mut impl Uniform,
+    scale: impl Fn(f32, f32) -> f32,
+    delta_scale: f32,
+) -> Spectrum {
+    let u_select = src.next_1d();
+    let u_point = src.next_2d();
+    let Some(sel) = ctx.selector.select(ctx.at, u_select) else {
+        return Spectrum::ZERO;
+    };
+    let light = &ctx.scene.lights[sel.index];
+    let Some(ls) = light.sample(ctx.at, u_point) else {
+        return Spectrum::ZERO;
+    };
+    let w_in = ctx.hit.frame.to_local(ls.w_in);
+    let f = f_cos(ctx.material, w_in, ctx.w_out);
+    if f == Spectrum::ZERO {
+        return Spectrum::ZERO;
+    }
+    let geometry = &ctx.scene.geometry;
+    let occluded = if ls.delta || ls.distance.is_infinite() {
+        geometry.direction_occluded(ctx.hit.p, ctx.hit.ng, ls.w_in, ls.distance)
+    } else {
+        geometry.segment_occluded(ctx.hit.p, ctx.hit.ng, ls.point, ls.normal)
+    };
+    if occluded {
+        return Spectrum::ZERO;
+    }
+    let factor = if ls.delta {
+        delta_scale / (ls.pdf * sel.pmf)
+    } else {
+        let p_light = sel.pmf * ls.pdf;
+        let p_bsdf = ctx.material.pdf(w_in, ctx.w_out);
+        scale(p_light, p_bsdf)
+    };
+    f * ls.radiance * factor
+}
+
+/// One BSDF sample: `scale(p_bsdf, p_light)` as in [`light_sample`]; `delta_scale`
+/// multiplies f·cos·Le/pdf for delta lobes.
+fn bsdf_sample(
+    ctx: &Context<'_>,
+    src: &mut impl Uniform,
+    scale: impl Fn(f32, f32) -> f32,
+    delta_scale: f32,
+) -> Spectrum {
+    let Some(s) = ctx.material.sample(ctx.w_out, src.next_2d()) else {
+        return Spectrum::ZERO;
+    };
+    if s.pdf.is_nan() || s.pdf <= 0.0 || s.f == Spectrum::ZERO {
+        return Spectrum::ZERO;
+    }
+    let w_world = ctx.hit.frame.to_world(s.w_in);
+    let ray = Ray::new(offset_origin(ctx.hit.p, ctx.hit.ng, w_world), w_world);
+    // The emitter the ray reaches (a surface light, or the environment if it escapes),
+    // its radiance, and the light strategy's density for this direction.
+    let scene = ctx.scene;
+    let (index, le, pdf_light) = match scene.geometry.intersect(&ray, f32::INFINITY) {
+        Some(y) if y.light != NO_LIGHT => {
+            let i = y.light as usize;
+            let le = emitted_at(scene, &y, -w_world);
+            let pdf = if s.delta {
+                0.0
+            } else {
+                scene.lights[i].pdf(ctx.at, y.p, y.ng)
+            };
+            (i, le, pdf)
+        }
+        Some(_) => return Spectrum::ZERO,
+        None => match scene.environment {
+            Some(i) => {
+                let light = &scene.lights[i];
+                (
+                    i,
+                    light.infinite_radiance(w_world),
+                    light.infinite_pdf(w_world),
+                )
+            }
+            None => return Spectrum::ZERO,
+        },
+    };
+    if le == Spectrum::ZERO {
+        return Spectrum::ZERO;
+    }
+    let f = s.f * s.w_in.z.abs();
+    let factor = if s.delta {
+        delta_scale / s.pdf
+    } else {
+        let p_light = ctx.selector.pmf(ctx.at, index) * pdf_light;
+        scale(s.pdf, p_light)
+    };
+    f * le * factor
+}

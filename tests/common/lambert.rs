@@ -1,0 +1,34 @@
+//! Lambert's formula for the irradiance from a uniform polygonal emitter: the analytic
+//! answer the estimator tests compare against.
+
+use glam::Vec3;
+
+/// Irradiance at x (normal n) from a polygon of uniform radiance L, clipped to the
+/// upper hemisphere: E = (L/2)·|Σ γ_i · n·(v̂_i × v̂_{i+1})/|v̂_i × v̂_{i+1}||
+/// (Lambert 1760; see Arvo 1995, "Applications of Irradiance Tensors").
+pub fn lambert_irradiance(x: Vec3, n: Vec3, polygon: &[Vec3], radiance: f32) -> f64 {
+    // Sutherland–Hodgman clip against the tangent plane n·(v − x) ≥ 0.
+    let mut clipped = Vec::new();
+    for i in 0..polygon.len() {
+        let (a, b) = (polygon[i], polygon[(i + 1) % polygon.len()]);
+        let (da, db) = (n.dot(a - x), n.dot(b - x));
+        if da >= 0.0 {
+            clipped.push(a);
+        }
+        if (da >= 0.0) != (db >= 0.0) {
+            clipped.push(a + (b - a) * (da / (da - db)));
+        }
+    }
+    let mut sum = 0.0f64;
+    for i in 0..clipped.len() {
+        let a = (clipped[i] - x).as_dvec3().normalize();
+        let b = (clipped[(i + 1) % clipped.len()] - x)
+            .as_dvec3()
+            .normalize();
+        let c = a.cross(b);
+        if c.length() > 0.0 {
+            sum += a.dot(b).clamp(-1.0, 1.0).acos() * n.as_dvec3().dot(c.normalize());
+        }
+    }
+    0.5 * radiance as f64 * sum.abs()
+}
