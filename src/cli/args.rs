@@ -16,7 +16,8 @@ pub struct StrategyArgs {
     /// Direct-lighting estimator: hemisphere, hemisphere-rejection, cosine, bsdf, light.
     #[arg(long)]
     pub estimator: Option<EstimatorKind>,
-    /// Area-light sampling strategy: area.
+    /// Area-light sampling strategy: area, visible-area, solid-angle, geometric, best (default;
+    /// per shape). A shape without the chosen strategy uses area.
     #[arg(long)]
     pub light_sampling: Option<LightSampling>,
     /// Light selection among many lights: uniform.

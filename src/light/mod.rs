@@ -4,10 +4,12 @@
 
 mod area;
 mod point;
+mod polygon;
 pub mod select;
 
-pub use area::{AreaLight, LightSampling};
+pub use area::{AreaLight, EmitterKind, LightPoint, LightSampling, uniform_area_pdf};
 pub use point::PointLight;
+pub use polygon::PolygonLight;
 
 use glam::{Vec2, Vec3};
 
@@ -63,6 +65,8 @@ pub enum Light {
     Area(AreaLight),
     /// A point light.
     Point(PointLight),
+    /// A diffuse emitter on a planar polygon (its geometry is its triangulation).
+    Polygon(PolygonLight),
 }
 
 impl Light {
@@ -73,6 +77,7 @@ impl Light {
         match self {
             Light::Area(l) => l.sample(at, u),
             Light::Point(l) => l.sample(at),
+            Light::Polygon(l) => l.sample(at, u),
         }
     }
 
@@ -83,6 +88,7 @@ impl Light {
         match self {
             Light::Area(l) => l.pdf(at, y, ny),
             Light::Point(_) => 0.0,
+            Light::Polygon(l) => l.pdf(at, y, ny),
         }
     }
 
@@ -92,6 +98,7 @@ impl Light {
         match self {
             Light::Area(l) => l.emitted(ny, w),
             Light::Point(_) => Spectrum::ZERO,
+            Light::Polygon(l) => l.emitted(w),
         }
     }
 
@@ -100,6 +107,17 @@ impl Light {
         match self {
             Light::Area(l) => l.power(),
             Light::Point(l) => l.power(),
+            Light::Polygon(l) => l.power(),
+        }
+    }
+
+    /// Sets the sampling strategy of an area or polygon light (point lights have none).
+    /// The light uses the strategy of that name where its shape has one, else `area`.
+    pub fn set_sampling(&mut self, sampling: LightSampling) {
+        match self {
+            Light::Area(l) => l.sampling = sampling,
+            Light::Polygon(l) => l.sampling = sampling,
+            Light::Point(_) => {}
         }
     }
 

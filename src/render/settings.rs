@@ -80,12 +80,12 @@ pub struct RenderSettings {
 }
 
 impl RenderSettings {
-    /// The defaults for `scene`: the light estimator with uniform-area light sampling,
+    /// The defaults for `scene`: the light estimator with the best light sampling per shape,
     /// uniform selection and the Sobol sampler at the scene's spp.
     pub fn for_scene(scene: &Scene) -> RenderSettings {
         RenderSettings {
             estimator: EstimatorKind::Light,
-            light_sampling: LightSampling::Area,
+            light_sampling: LightSampling::Best,
             light_select: LightSelect::Uniform,
             sampler: SamplerKind::Sobol,
             spp: scene.spp,

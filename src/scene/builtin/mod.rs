@@ -1,6 +1,7 @@
 //! Built-in scenes: each is a figure the lecture draws, so students can reproduce it.
 
 mod assignment;
+pub mod sphere_near_plane;
 
 use super::{Scene, SceneError};
 
@@ -15,11 +16,18 @@ pub struct Builtin {
 }
 
 /// Every built-in scene; the first is the default scene.
-pub const BUILTINS: &[Builtin] = &[Builtin {
-    name: "assignment",
-    description: "one small area light over diffuse and Phong (n = 10, 100, 1000) spheres: hemisphere vs BRDF vs light sampling",
-    build: assignment::build,
-}];
+pub const BUILTINS: &[Builtin] = &[
+    Builtin {
+        name: "assignment",
+        description: "one small area light over diffuse and Phong (n = 10, 100, 1000) spheres: hemisphere vs BRDF vs light sampling",
+        build: assignment::build,
+    },
+    Builtin {
+        name: "sphere-near-plane",
+        description: "a sphere light just above a diffuse floor, a grazing rectangle light and an emitting octahedron: where G varies most",
+        build: sphere_near_plane::build,
+    },
+];
 
 /// The scene `render` draws when none is given.
 pub const DEFAULT_SCENE: &str = "builtin:assignment";
