@@ -76,8 +76,16 @@ impl ProjectedCone {
             z: [0.0; BINS + 1],
             total: 0.0,
         };
+        // Above the horizon (A ≥ B at the rim, hence everywhere) Z = 2πA needs no acos.
+        let (a_rim, b_rim) = cone.coefficients(s_max);
+        let above = a_rim >= b_rim;
         for i in 0..=BINS {
-            cone.z[i] = cone.marginal(i as f64 * s_max / BINS as f64).0;
+            let s = i as f64 * s_max / BINS as f64;
+            cone.z[i] = if above {
+                2.0 * PI * cone.coefficients(s).0
+            } else {
+                cone.marginal(s).0
+            };
         }
         let ds = s_max / BINS as f64;
         cone.total = (0..BINS)
