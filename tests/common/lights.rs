@@ -162,22 +162,6 @@ pub fn placement(shape: TestShape, placement: Placement) -> ShadingPoint {
 pub fn hit(light: &Light, at: &ShadingPoint, w: Vec3) -> Option<(Vec3, Vec3)> {
     let ray = Ray::new(at.p, w);
     match light {
-        Light::Area(AreaLight {
-            shape: Shape::Sphere(s),
-            ..
-        }) => {
-            // Closest approach, so rays that graze the silhouette (rounding) still hit.
-            let to_center = s.center - at.p;
-            let along = w.dot(to_center);
-            let perp2 = (to_center - along * w).length_squared();
-            let r2 = s.radius * s.radius;
-            if along <= 0.0 || perp2 > r2 * (1.0 + 1e-4) {
-                return None;
-            }
-            let y = at.p + (along - (r2 - perp2).max(0.0).sqrt()) * w;
-            let ny = (y - s.center).normalize();
-            Some((s.center + s.radius * ny, ny))
-        }
         Light::Area(a) => {
             let h = a.shape.intersect(&ray, f32::INFINITY)?;
             let y = ray.at(h.t);
