@@ -70,9 +70,13 @@ impl EmitterKind {
 
 impl LightSampling {
     /// The strategy actually used on a shape of kind `kind`: the shape's own strategy of
-    /// that name, `area` where the shape has none, and for `best` the strategy with the
-    /// lowest measured relMSE at equal samples on `sphere-near-plane` (solid angle for
-    /// every shape that has it; disks have only `area`).
+    /// that name, `area` where the shape has none, and for `best` solid angle on every
+    /// shape that has it (disks have only `area`). Measured on `sphere-near-plane`, one
+    /// emitter at a time, relMSE at 16 spp (light estimator; `examples/light_strategies.rs`):
+    /// sphere area 2.6e-2, visible-area 3.7e-4, solid-angle 1.0e-4, geometric 6.4e-5;
+    /// rectangle area 2.4e-2, solid-angle 2.6e-4; mesh 1.9e-3 vs 6.0e-4; polygon 1.2e-2 vs
+    /// 1.2e-4. On spheres `geometric` is lower still but costs 6.5× as much per sample
+    /// (775 vs 118 ns), which more than eats its 1.6× gain, so `best` is solid angle.
     pub fn resolve(self, kind: EmitterKind) -> LightSampling {
         use LightSampling::*;
         match (self, kind) {
@@ -119,7 +123,7 @@ pub struct LightPoint {
 pub fn uniform_area_pdf(x: Vec3, y: Vec3, ny: Vec3, area: f32) -> f32 {
     let d = y - x;
     let dist2 = d.length_squared();
-    if !(dist2 > 0.0) {
+    if dist2.is_nan() || dist2 <= 0.0 {
         return 0.0;
     }
     super::area_to_solid_angle(1.0 / area, dist2, ny.dot(d) / dist2.sqrt())
@@ -197,7 +201,7 @@ pub(crate) fn light_sample(
     let LightPoint { y, ny, pdf } = point;
     let d = y - at.p;
     let dist2 = d.length_squared();
-    if !(dist2 > 0.0) {
+    if dist2.is_nan() || dist2 <= 0.0 {
         return None;
     }
     let distance = dist2.sqrt();

@@ -120,7 +120,7 @@ impl ProjectedCone {
         let s = self.sample_s(u.x as f64);
         let (a, b) = self.coefficients(s);
         let (z, phi_m) = clipped_integral(a, b);
-        if !(z > 0.0) {
+        if z.is_nan() || z <= 0.0 {
             return None;
         }
         let phi = invert_conditional(a, b, phi_m, u.y as f64 * z);
@@ -231,7 +231,8 @@ mod tests {
         let cone = ProjectedCone::new(axis, Vec3::Z, s_max).expect("visible");
         // Projected solid angle of a cap: π·sin²θmax·cos β.
         let expected = PI * (30f64).to_radians().sin().powi(2) * (0.5f64).sqrt();
-        assert!((cone.total - expected).abs() < 1e-9 * expected);
+        // (the axis is f32, so cos β carries ~10⁻⁸ relative error)
+        assert!((cone.total - expected).abs() < 1e-6 * expected);
         for u in [Vec2::new(0.2, 0.3), Vec2::new(0.9, 0.7), Vec2::ZERO] {
             let (w, pdf) = cone.sample(u).expect("sample");
             assert!((pdf as f64 - w.z as f64 / expected).abs() < 1e-4 * pdf as f64);
