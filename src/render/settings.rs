@@ -83,13 +83,13 @@ pub struct RenderSettings {
 
 impl RenderSettings {
     /// The defaults for `scene`: MIS (one light and one BSDF sample, power heuristic) with
-    /// uniform-area light sampling, light-BVH selection and the Sobol sampler at the
+    /// the best light sampling per shape, light-BVH selection and the Sobol sampler at the
     /// scene's spp.
     pub fn for_scene(scene: &Scene) -> RenderSettings {
         RenderSettings {
             estimator: EstimatorKind::Mis,
             mis: MisSettings::default(),
-            light_sampling: LightSampling::Area,
+            light_sampling: LightSampling::Best,
             light_select: LightSelect::Bvh,
             sampler: SamplerKind::Sobol,
             spp: scene.spp,

@@ -3,6 +3,7 @@
 mod assignment;
 mod envmap;
 pub mod shirley100;
+pub mod sphere_near_plane;
 mod veach_mis;
 
 use super::{Scene, SceneError};
@@ -23,6 +24,11 @@ pub const BUILTINS: &[Builtin] = &[
         name: "assignment",
         description: "one small area light over diffuse and Phong (n = 10, 100, 1000) spheres: hemisphere vs BRDF vs light sampling",
         build: assignment::build,
+    },
+    Builtin {
+        name: "sphere-near-plane",
+        description: "a sphere light just above a diffuse floor, a grazing rectangle light and an emitting octahedron: where G varies most",
+        build: sphere_near_plane::build,
     },
     Builtin {
         name: "veach-mis",
