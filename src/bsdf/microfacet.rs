@@ -155,9 +155,11 @@ impl Microfacet {
     /// tan²θ = −α(φ)² ln(1 − u₀) (Walter et al. 2007, eq. 28).
     fn sample_beckmann_cos(&self, u: Vec2) -> Vec3 {
         let (sin_phi, cos_phi, alpha2) = self.sample_phi(u.y);
-        let tan2 = -alpha2 * (1.0 - u.x).ln();
+        // ln_1p keeps tan²θ accurate for u → 0; sin θ = tan θ·cos θ rather than
+        // √(1 − cos²θ), which loses all digits for the α ≈ 10⁻³ lobes.
+        let tan2 = -alpha2 * (-u.x).ln_1p();
         let cos_theta = 1.0 / (1.0 + tan2).sqrt();
-        let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
+        let sin_theta = tan2.sqrt() * cos_theta;
         Vec3::new(cos_phi * sin_theta, sin_phi * sin_theta, cos_theta)
     }
 

@@ -2,3 +2,4 @@
 #![allow(dead_code)]
 
 pub mod chi2;
+pub mod bsdfs;
