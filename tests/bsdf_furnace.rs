@@ -26,9 +26,9 @@ fn sampled_albedo(material: &Material, w: Vec3) -> (f64, f64) {
     let (mut sum, mut sum2) = (0.0f64, 0.0f64);
     for _ in 0..DRAWS {
         let u = Vec2::new(rng.next_f32(), rng.next_f32());
-        let x = material
-            .sample(w, u)
-            .map_or(0.0, |s| luminance(s.f) as f64 * s.w_in.z as f64 / s.pdf as f64);
+        let x = material.sample(w, u).map_or(0.0, |s| {
+            luminance(s.f) as f64 * s.w_in.z as f64 / s.pdf as f64
+        });
         sum += x;
         sum2 += x * x;
     }
@@ -52,14 +52,18 @@ fn white_albedo_is_at_most_one_and_sampling_agrees_with_eval() {
         for angle in ANGLES {
             let w = w_out(angle);
             let eval = |w_in: Vec3| luminance(case.material.eval(w_in, w)) as f64 * w_in.z as f64;
-            let quadrature = integrate_over_half_vectors(case.alpha, w, eval) + delta_albedo(case, w);
+            let quadrature =
+                integrate_over_half_vectors(case.alpha, w, eval) + delta_albedo(case, w);
             let (sampled, sigma) = sampled_albedo(&case.material, w);
             println!(
                 "{:28} {angle:4}°: albedo {quadrature:.5} (quadrature), {sampled:.5} ± {sigma:.5} (sampled)",
                 case.name
             );
             if quadrature > 1.01 || sampled > 1.01 + 4.0 * sigma {
-                failures.push(format!("{} at {angle}°: albedo {quadrature} / {sampled}", case.name));
+                failures.push(format!(
+                    "{} at {angle}°: albedo {quadrature} / {sampled}",
+                    case.name
+                ));
             }
             if (quadrature - sampled).abs() > 4.0 * sigma + 2e-3 {
                 failures.push(format!(
@@ -79,7 +83,10 @@ fn white_smooth_conductor_reflects_everything() {
         let w = w_out(angle);
         let s = mirror.sample(w, Vec2::new(0.3, 0.7)).expect("sample");
         let throughput = s.f * s.w_in.z / s.pdf;
-        assert!((throughput - Vec3::ONE).abs().max_element() < 1e-5, "{angle}°: {throughput}");
+        assert!(
+            (throughput - Vec3::ONE).abs().max_element() < 1e-5,
+            "{angle}°: {throughput}"
+        );
     }
     // A real metal reflects less than everything, and more at grazing angles.
     let gold = Conductor::from_material(ConductorMaterial::Au);
@@ -105,7 +112,10 @@ fn white_rough_conductor_is_nearly_lossless_when_nearly_smooth() {
                 let eval = |w_in: Vec3| luminance(rc.eval(w_in, w)) as f64 * w_in.z as f64;
                 let albedo = integrate_over_half_vectors(alpha, w, eval);
                 println!("{distribution} α = {alpha} at {angle}°: albedo {albedo:.5}");
-                assert!(albedo > 0.99 && albedo < 1.001, "{distribution} {alpha} {angle}: {albedo}");
+                assert!(
+                    albedo > 0.99 && albedo < 1.001,
+                    "{distribution} {alpha} {angle}: {albedo}"
+                );
             }
         }
     }

@@ -127,10 +127,19 @@ fn every_bsdf_passes_chi_square() {
             Space::HalfVector => {
                 let mut sample = |rng: &mut Rng32| {
                     let (w_in, _) = draw(rng);
-                    let h = if w_in == MARKER { MARKER } else { half_vector(w_in, w) };
+                    let h = if w_in == MARKER {
+                        MARKER
+                    } else {
+                        half_vector(w_in, w)
+                    };
                     (h, half_vector_pdf(case, w, h))
                 };
-                chi2_test(domain, &mut sample, &|h| half_vector_pdf(case, w, h), &config)
+                chi2_test(
+                    domain,
+                    &mut sample,
+                    &|h| half_vector_pdf(case, w, h),
+                    &config,
+                )
             }
         };
         if let Err(e) = judge(&name, &report, alpha) {
@@ -161,10 +170,22 @@ fn harness_rejects_a_pdf_that_ignores_visible_normals() {
     };
     let pdf = |x: Vec3| if x == MARKER { 1.0 } else { wrong(x) };
     let domain = Domain::hemisphere();
-    let report = chi2_test(&domain, &mut sample, &pdf, &Chi2Config::new(&domain, SAMPLES, SEED));
-    println!("visible normals under the D·cos pdf: p-value {:e}", report.p_value);
+    let report = chi2_test(
+        &domain,
+        &mut sample,
+        &pdf,
+        &Chi2Config::new(&domain, SAMPLES, SEED),
+    );
+    println!(
+        "visible normals under the D·cos pdf: p-value {:e}",
+        report.p_value
+    );
     assert!(report.failure.is_none(), "{:?}", report.failure);
-    assert!(report.p_value < 1e-12, "the wrong pdf was accepted: p = {}", report.p_value);
+    assert!(
+        report.p_value < 1e-12,
+        "the wrong pdf was accepted: p = {}",
+        report.p_value
+    );
 }
 
 #[test]
@@ -190,9 +211,15 @@ fn every_pdf_integrates_to_the_sampled_mass() {
                 .count() as f64
                 / DRAWS as f64;
             let sigma = (kept * (1.0 - kept) / DRAWS as f64).sqrt();
-            println!("{:28} {angle:4}°: integral {total:.5}, sampled mass {kept:.5}", case.name);
+            println!(
+                "{:28} {angle:4}°: integral {total:.5}, sampled mass {kept:.5}",
+                case.name
+            );
             if (total - kept).abs() > 4.0 * sigma + 2e-3 {
-                failures.push(format!("{} at {angle}°: ∫pdf = {total}, sampled {kept}", case.name));
+                failures.push(format!(
+                    "{} at {angle}°: ∫pdf = {total}, sampled {kept}",
+                    case.name
+                ));
             }
         }
     }
@@ -212,8 +239,15 @@ fn samples_carry_eval_and_pdf() {
                         continue;
                     };
                     let name = &case.name;
-                    assert!(s.w_in.is_finite() && s.f.is_finite() && s.pdf > 0.0, "{name} {u}");
-                    assert!((s.w_in.length() - 1.0).abs() < 1e-4, "{name} {u}: {}", s.w_in);
+                    assert!(
+                        s.w_in.is_finite() && s.f.is_finite() && s.pdf > 0.0,
+                        "{name} {u}"
+                    );
+                    assert!(
+                        (s.w_in.length() - 1.0).abs() < 1e-4,
+                        "{name} {u}: {}",
+                        s.w_in
+                    );
                     if !s.delta {
                         assert_eq!(s.f, case.material.eval(s.w_in, w), "{name} {angle} {u}");
                         assert_eq!(s.pdf, case.material.pdf(s.w_in, w), "{name} {angle} {u}");

@@ -9,6 +9,17 @@ use lightlab::bsdf::{
 };
 use lightlab::math::Spectrum;
 
+/// One direction pair of one configuration, with Mitsuba's answers.
+struct Row {
+    name: &'static str,
+    w_out: [f32; 3],
+    w_in: [f32; 3],
+    /// f = Mitsuba's `eval` divided by cos θ_in.
+    f: [f32; 3],
+    /// Mitsuba's `pdf`, or −1 where the sampling strategies differ (Beckmann).
+    pdf: f32,
+}
+
 include!("mitsuba/values.rs");
 
 /// The lightlab material for each configuration name of the Python script.
@@ -73,7 +84,14 @@ fn bsdf_values_match_mitsuba() {
     let mut failures = Vec::new();
     // Largest relative difference in f and pdf, for conductors and plastics.
     let mut worst = [[0.0f32; 2]; 2];
-    for &(name, w_out, w_in, f, pdf) in MITSUBA {
+    for &Row {
+        name,
+        w_out,
+        w_in,
+        f,
+        pdf,
+    } in MITSUBA
+    {
         let m = material(name);
         let (w_out, w_in) = (Vec3::from_array(w_out), Vec3::from_array(w_in));
         let ours = m.eval(w_in, w_out);
@@ -104,6 +122,9 @@ fn bsdf_values_match_mitsuba() {
             }
         }
     }
-    println!("largest relative difference [f, pdf]: conductors {:?}, plastics {:?}", worst[0], worst[1]);
+    println!(
+        "largest relative difference [f, pdf]: conductors {:?}, plastics {:?}",
+        worst[0], worst[1]
+    );
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

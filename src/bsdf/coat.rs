@@ -49,7 +49,10 @@ impl CoatTables {
     pub fn transmittance(&self, cos_theta: f32) -> f32 {
         let x = cos_theta.clamp(0.0, 1.0) * (TABLE_SIZE - 1) as f32;
         let i = (x as usize).min(TABLE_SIZE - 2);
-        let (a, b) = (self.external_transmittance[i], self.external_transmittance[i + 1]);
+        let (a, b) = (
+            self.external_transmittance[i],
+            self.external_transmittance[i + 1],
+        );
         a + (b - a) * (x - i as f32)
     }
 }
@@ -104,7 +107,10 @@ fn reflected(mf: &Microfacet, w: Vec3, u: Vec3, eta: f32) -> (f64, f64) {
     if r.z <= 0.0 {
         return (0.0, weight);
     }
-    ((fresnel_dielectric(w.dot(m), eta) * mf.g1(r, m)) as f64, weight)
+    (
+        (fresnel_dielectric(w.dot(m), eta) * mf.g1(r, m)) as f64,
+        weight,
+    )
 }
 
 /// Gauss–Legendre nodes and weights on [−1, 1] (Newton's method on P_n, starting from
@@ -162,6 +168,10 @@ mod tests {
         // Rising Fresnel makes transmittance fall towards grazing.
         assert!(tables.transmittance(0.1) < tables.transmittance(0.9));
         // Internal reflectance of η = 1.5 is ≈ 0.6 (total internal reflection).
-        assert!((0.5..0.7).contains(&tables.internal_reflectance), "{}", tables.internal_reflectance);
+        assert!(
+            (0.5..0.7).contains(&tables.internal_reflectance),
+            "{}",
+            tables.internal_reflectance
+        );
     }
 }

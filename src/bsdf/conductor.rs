@@ -86,7 +86,14 @@ mod tests {
         assert_eq!(c.eval(s.w_in, w_out), Spectrum::ZERO);
         assert_eq!(c.pdf(s.w_in, w_out), 0.0);
         assert!(c.sample(-w_out, Vec2::ZERO).is_none());
-        let white = Conductor::default().sample(w_out, Vec2::ZERO).expect("sample");
-        assert!((white.f * white.w_in.z / white.pdf - Spectrum::ONE).abs().max_element() < 1e-6);
+        let white = Conductor::default()
+            .sample(w_out, Vec2::ZERO)
+            .expect("sample");
+        assert!(
+            (white.f * white.w_in.z / white.pdf - Spectrum::ONE)
+                .abs()
+                .max_element()
+                < 1e-6
+        );
     }
 }

@@ -61,7 +61,11 @@ fn conductor_channel(cos: f32, eta: f32, k: f32) -> f32 {
     let r_p = r_s * (term3 - term4) / (term3 + term4);
     let r = 0.5 * (r_s + r_p);
     // 0/0 only at grazing incidence on an index-matched conductor: reflect fully.
-    if r.is_finite() { r.clamp(0.0, 1.0) } else { 1.0 }
+    if r.is_finite() {
+        r.clamp(0.0, 1.0)
+    } else {
+        1.0
+    }
 }
 
 /// Hemispherical average 2∫ F(cos θ) cos θ d(cos θ) of [`fresnel_dielectric`] for
@@ -134,7 +138,10 @@ mod tests {
                 })
                 .sum();
             let fit = fresnel_diffuse_reflectance(eta);
-            assert!((fit - integral).abs() < 0.01 * integral.max(0.05), "{eta}: {fit} vs {integral}");
+            assert!(
+                (fit - integral).abs() < 0.01 * integral.max(0.05),
+                "{eta}: {fit} vs {integral}"
+            );
         }
     }
 }

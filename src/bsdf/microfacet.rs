@@ -172,7 +172,11 @@ impl Microfacet {
         }
         let phi = (self.alpha_v / self.alpha_u * (TWO_PI * u).tan()).atan();
         // atan folds to (−π/2, π/2); quadrants 2 and 3 of 2πu take φ + π.
-        let phi = if (0.25..0.75).contains(&u) { phi + PI } else { phi };
+        let phi = if (0.25..0.75).contains(&u) {
+            phi + PI
+        } else {
+            phi
+        };
         let (s, c) = phi.sin_cos();
         let alpha2 = 1.0 / ((c / self.alpha_u).powi(2) + (s / self.alpha_v).powi(2));
         (s, c, alpha2)
@@ -241,8 +245,15 @@ mod tests {
                 let t = theta.to_radians();
                 let v = Vec3::new(t.sin() * 0.8, t.sin() * 0.6, t.cos());
                 let total = integrate_hemisphere(|m| mf.g1(v, m) * v.dot(m).max(0.0) * mf.d(m));
-                let tolerance = if mf.distribution == MicrofacetType::Ggx { 3e-3 } else { 6e-3 };
-                assert!((total / v.z as f64 - 1.0).abs() < tolerance, "{mf:?} {theta}: {total}");
+                let tolerance = if mf.distribution == MicrofacetType::Ggx {
+                    3e-3
+                } else {
+                    6e-3
+                };
+                assert!(
+                    (total / v.z as f64 - 1.0).abs() < tolerance,
+                    "{mf:?} {theta}: {total}"
+                );
             }
         }
     }
@@ -252,10 +263,21 @@ mod tests {
         let top = 1.0 - f32::EPSILON / 2.0;
         for mf in cases() {
             let v = Vec3::new(0.6, 0.0, 0.8);
-            for u in [Vec2::ZERO, Vec2::splat(top), Vec2::new(0.0, top), Vec2::new(top, 0.5)] {
+            for u in [
+                Vec2::ZERO,
+                Vec2::splat(top),
+                Vec2::new(0.0, top),
+                Vec2::new(top, 0.5),
+            ] {
                 let (m, pdf) = mf.sample(v, u);
-                assert!(m.is_finite() && (m.length() - 1.0).abs() < 1e-4, "{mf:?} {u}: {m}");
-                assert!(m.z >= 0.0 && pdf.is_finite() && pdf >= 0.0, "{mf:?} {u}: {pdf}");
+                assert!(
+                    m.is_finite() && (m.length() - 1.0).abs() < 1e-4,
+                    "{mf:?} {u}: {m}"
+                );
+                assert!(
+                    m.z >= 0.0 && pdf.is_finite() && pdf >= 0.0,
+                    "{mf:?} {u}: {pdf}"
+                );
             }
         }
     }

@@ -108,7 +108,9 @@ mod tests {
         assert!(mirror.delta);
         let weight = mirror.f * mirror.w_in.z / mirror.pdf;
         assert!((weight.x - fresnel_dielectric(0.8, 1.49 / 1.000_277) / ps).abs() < 1e-5);
-        let diffuse = p.sample(w_out, Vec2::new(0.5 + ps * 0.5, 0.3)).expect("diffuse");
+        let diffuse = p
+            .sample(w_out, Vec2::new(0.5 + ps * 0.5, 0.3))
+            .expect("diffuse");
         assert!(!diffuse.delta);
         assert_eq!(diffuse.pdf, p.pdf(diffuse.w_in, w_out));
         assert_eq!(diffuse.f, p.eval(diffuse.w_in, w_out));

@@ -125,7 +125,10 @@ mod tests {
                 let b = RoughConductor::from_material(distribution, alpha, ConductorMaterial::Au);
                 let w_out = Vec3::new(0.5, 0.2, 0.6).normalize();
                 for i in 0..400 {
-                    let u = Vec2::new((i % 20) as f32 / 20.0 + 0.025, (i / 20) as f32 / 20.0 + 0.025);
+                    let u = Vec2::new(
+                        (i % 20) as f32 / 20.0 + 0.025,
+                        (i / 20) as f32 / 20.0 + 0.025,
+                    );
                     if let Some(s) = b.sample(w_out, u) {
                         assert!(s.w_in.z > 0.0 && !s.delta);
                         assert_eq!(s.pdf, b.pdf(s.w_in, w_out));
@@ -139,8 +142,13 @@ mod tests {
     #[test]
     fn reciprocal_and_zero_below() {
         let b = RoughConductor::from_material(MicrofacetType::Ggx, 0.3, ConductorMaterial::Cu);
-        let (a, c) = (Vec3::new(0.3, -0.2, 0.9).normalize(), Vec3::new(-0.6, 0.1, 0.5).normalize());
-        assert!((b.eval(a, c) - b.eval(c, a)).abs().max_element() < 1e-5 * b.eval(a, c).max_element());
+        let (a, c) = (
+            Vec3::new(0.3, -0.2, 0.9).normalize(),
+            Vec3::new(-0.6, 0.1, 0.5).normalize(),
+        );
+        assert!(
+            (b.eval(a, c) - b.eval(c, a)).abs().max_element() < 1e-5 * b.eval(a, c).max_element()
+        );
         assert_eq!(b.eval(-a, c), Spectrum::ZERO);
         assert_eq!(b.pdf(a, -c), 0.0);
         assert!(b.sample(-c, Vec2::splat(0.5)).is_none());

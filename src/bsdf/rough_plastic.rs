@@ -1,10 +1,12 @@
-//! Mitsuba 3's `roughplastic`: a diffuse base under a rough dielectric coat.
+//! Mitsuba 3's `roughplastic`: a diffuse base under a rough dielectric coat,
+//!
 //! f = F(w_out·h, η)·D·G/(4 cos θ_in cos θ_out)·k_s
-//!   + k_d/(1 − k_d^[nonlinear]·R_int)·T(cos θ_in)·T(cos θ_out)/(π η²),
-//! T the coat's transmittance and R_int its internal reflectance (Weidlich & Wilkie 2007,
-//! "Arbitrarily Layered Micro-Facet Surfaces", with Mitsuba's normalisation of the base).
-//! The specular lobe is sampled with probability ∝ (1 − T(cos θ_out))·s against
-//! T(cos θ_out)·(1 − s), s = mean k_s/(mean k_d + mean k_s), as Mitsuba does.
+//!     + k_d/(1 − k_d^[nonlinear]·R_int)·T(cos θ_in)·T(cos θ_out)/(π η²),
+//!
+//! with T the coat's transmittance and R_int its internal reflectance (Weidlich &
+//! Wilkie 2007, "Arbitrarily Layered Micro-Facet Surfaces", with Mitsuba's normalisation
+//! of the base). The specular lobe is sampled with probability ∝ (1 − T(cos θ_out))·s
+//! against T(cos θ_out)·(1 − s), s = mean k_s/(mean k_d + mean k_s), as Mitsuba does.
 
 use glam::{Vec2, Vec3};
 
@@ -100,7 +102,10 @@ impl RoughPlastic {
     pub fn new(params: PlasticParams) -> Result<RoughPlastic, String> {
         let eta = params.eta()?;
         if !(params.alpha >= 0.0 && params.alpha.is_finite()) {
-            return Err(format!("roughplastic: alpha ({}) must be ≥ 0", params.alpha));
+            return Err(format!(
+                "roughplastic: alpha ({}) must be ≥ 0",
+                params.alpha
+            ));
         }
         let mf = Microfacet::isotropic(params.distribution, params.alpha);
         let tables = CoatTables::new(&mf, eta);
@@ -146,15 +151,17 @@ impl Bsdf for RoughPlastic {
             if d > 0.0 {
                 let fresnel = fresnel_dielectric(w_out.dot(h), self.eta);
                 let g = mf.g(w_in, w_out, h);
-                value = self.params.specular_reflectance
-                    * (fresnel * d * g / (4.0 * w_in.z * w_out.z));
+                value =
+                    self.params.specular_reflectance * (fresnel * d * g / (4.0 * w_in.z * w_out.z));
             }
         }
         let (t_in, t_out) = (
             self.tables.transmittance(w_in.z),
             self.tables.transmittance(w_out.z),
         );
-        let diffuse = self.params.normalised_diffuse(self.tables.internal_reflectance);
+        let diffuse = self
+            .params
+            .normalised_diffuse(self.tables.internal_reflectance);
         value + diffuse * (INV_PI * t_in * t_out / (self.eta * self.eta))
     }
 
@@ -212,7 +219,10 @@ mod tests {
             let w_out = Vec3::new(0.5, 0.2, 0.6).normalize();
             let mut specular = 0;
             for i in 0..400 {
-                let u = Vec2::new((i % 20) as f32 / 20.0 + 0.025, (i / 20) as f32 / 20.0 + 0.025);
+                let u = Vec2::new(
+                    (i % 20) as f32 / 20.0 + 0.025,
+                    (i / 20) as f32 / 20.0 + 0.025,
+                );
                 if let Some(s) = b.sample(w_out, u) {
                     assert_eq!(s.pdf, b.pdf(s.w_in, w_out));
                     assert_eq!(s.f, b.eval(s.w_in, w_out));

@@ -3,8 +3,8 @@
 
 use glam::Vec3;
 use lightlab::bsdf::{
-    Conductor, ConductorMaterial, Material, MicrofacetType, Plastic, PlasticParams,
-    RoughConductor, RoughPlastic,
+    Conductor, ConductorMaterial, Material, MicrofacetType, Plastic, PlasticParams, RoughConductor,
+    RoughPlastic,
 };
 use lightlab::math::Spectrum;
 
@@ -98,8 +98,7 @@ pub fn integrate_over_half_vectors(alpha: f32, w_out: Vec3, g: impl Fn(Vec3) -> 
         let tan = k * s / (1.0 - s);
         let theta = tan.atan();
         // dθ/ds = k/((1 − s)²(1 + tan²θ)); dω = sin θ dθ dφ.
-        let weight = theta.sin() * k / ((1.0 - s).powi(2) * (1.0 + tan * tan))
-            / ns as f64
+        let weight = theta.sin() * k / ((1.0 - s).powi(2) * (1.0 + tan * tan)) / ns as f64
             * std::f64::consts::TAU
             / nphi as f64;
         for j in 0..nphi {

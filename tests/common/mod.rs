@@ -1,5 +1,5 @@
 //! Helpers shared by the statistical tests. Each test binary uses only part of them.
 #![allow(dead_code)]
 
-pub mod chi2;
 pub mod bsdfs;
+pub mod chi2;
