@@ -1,6 +1,7 @@
 //! Built-in scenes: each is a figure the lecture draws, so students can reproduce it.
 
 mod assignment;
+mod materials;
 
 use super::{Scene, SceneError};
 
@@ -15,11 +16,18 @@ pub struct Builtin {
 }
 
 /// Every built-in scene; the first is the default scene.
-pub const BUILTINS: &[Builtin] = &[Builtin {
-    name: "assignment",
-    description: "one small area light over diffuse and Phong (n = 10, 100, 1000) spheres: hemisphere vs BRDF vs light sampling",
-    build: assignment::build,
-}];
+pub const BUILTINS: &[Builtin] = &[
+    Builtin {
+        name: "assignment",
+        description: "one small area light over diffuse and Phong (n = 10, 100, 1000) spheres: hemisphere vs BRDF vs light sampling",
+        build: assignment::build,
+    },
+    Builtin {
+        name: "materials",
+        description: "smooth and rough conductors and plastics (Mitsuba 3's models) under one area light",
+        build: materials::build,
+    },
+];
 
 /// The scene `render` draws when none is given.
 pub const DEFAULT_SCENE: &str = "builtin:assignment";
