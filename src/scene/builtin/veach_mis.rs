@@ -61,8 +61,10 @@ pub fn build() -> Result<Scene, SceneError> {
     ];
     for (c, n_exp) in centres.into_iter().zip(PLATE_EXPONENTS) {
         let m = b.material(Material::Phong(Phong {
-            kd: Spectrum::splat(0.07),
-            ks: Spectrum::splat(0.75),
+            // Purely glossy, as Veach's plates: a diffuse part would add BSDF-sampling
+            // fireflies (its cosine lobe meeting the tiny bright lights) to every plate.
+            kd: Spectrum::ZERO,
+            ks: Spectrum::splat(0.8),
             exponent: n_exp,
         }));
         let to_camera = (CAMERA - c).normalize();
