@@ -2,7 +2,7 @@
 
 use glam::Vec3;
 
-use super::{Scene, SceneError};
+use super::{Requested, Scene, SceneError};
 use crate::bsdf::Material;
 use crate::geometry::shape::{Disk, Rectangle, Sphere, Triangle};
 use crate::geometry::{Geometry, Mesh, NO_LIGHT, Primitive, Shape};
@@ -37,6 +37,7 @@ pub struct SceneBuilder {
     meshes: Vec<Mesh>,
     materials: Vec<Material>,
     lights: Vec<Light>,
+    two_sided: Vec<bool>,
 }
 
 impl SceneBuilder {
@@ -48,6 +49,7 @@ impl SceneBuilder {
             meshes: Vec::new(),
             materials: Vec::new(),
             lights: Vec::new(),
+            two_sided: Vec::new(),
         }
     }
 
@@ -55,6 +57,16 @@ impl SceneBuilder {
     pub fn material(&mut self, m: Material) -> u32 {
         self.materials.push(m);
         self.materials.len() as u32 - 1
+    }
+
+    /// Marks material `m` as reflecting from both sides (Mitsuba's `twosided`: a hit
+    /// seen from behind is shaded with the normal flipped).
+    pub fn set_two_sided(&mut self, m: u32) -> &mut Self {
+        if self.two_sided.len() <= m as usize {
+            self.two_sided.resize(m as usize + 1, false);
+        }
+        self.two_sided[m as usize] = true;
+        self
     }
 
     /// Adds a shape; if it emits, it also becomes a light.
@@ -197,6 +209,8 @@ impl SceneBuilder {
             materials: self.materials,
             lights: self.lights,
             spp,
+            two_sided: self.two_sided,
+            requested: Requested::default(),
         })
     }
 }

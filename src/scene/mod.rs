@@ -9,6 +9,9 @@ pub use builder::SceneBuilder;
 pub use error::SceneError;
 
 use crate::bsdf::Material;
+use crate::image::Filter;
+use crate::integrator::MisSettings;
+use crate::sampling::SamplerKind;
 use crate::geometry::Geometry;
 use crate::light::Light;
 use crate::render::camera::Camera;
@@ -28,6 +31,33 @@ pub struct Scene {
     pub lights: Vec<Light>,
     /// Default samples per pixel.
     pub spp: u32,
+    /// Materials that reflect from both sides (Mitsuba's `twosided`), by material index;
+    /// missing entries are one-sided.
+    pub two_sided: Vec<bool>,
+    /// Render settings the scene file asks for.
+    pub requested: Requested,
+}
+
+/// Render settings a scene file asks for; `None` leaves the renderer's default. Command-
+/// line flags override them.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Requested {
+    /// Pixel reconstruction filter (default: the one-pixel box).
+    pub filter: Filter,
+    /// Random number source.
+    pub sampler: Option<SamplerKind>,
+    /// Seed.
+    pub seed: Option<u64>,
+    /// MIS sample counts and heuristic.
+    pub mis: Option<MisSettings>,
+}
+
+impl Scene {
+    /// True when material `m` reflects from both sides.
+    #[inline]
+    pub fn is_two_sided(&self, m: u32) -> bool {
+        self.two_sided.get(m as usize).copied().unwrap_or(false)
+    }
 }
 
 /// Loads `builtin:NAME` (the only source until scene files land).
