@@ -4,6 +4,8 @@
 pub mod builder;
 pub mod builtin;
 mod error;
+pub mod mesh_io;
+pub mod xml;
 
 pub use builder::SceneBuilder;
 pub use error::SceneError;
@@ -60,14 +62,27 @@ impl Scene {
     }
 }
 
-/// Loads `builtin:NAME` (the only source until scene files land).
+/// Loads `builtin:NAME` or a Mitsuba XML file (warnings go to stderr).
 pub fn load(spec: &str) -> Result<Scene, SceneError> {
+    load_with(spec, &[])
+}
+
+/// Loads `builtin:NAME` or a Mitsuba XML file with `-D name=value` definitions; the
+/// loader's located warnings are printed to stderr.
+pub fn load_with(spec: &str, defines: &[(String, String)]) -> Result<Scene, SceneError> {
     match spec.strip_prefix("builtin:") {
-        Some(name) => builtin::build(name),
-        None => Err(SceneError::new(
-            spec,
-            None,
-            "scene files are not supported yet; use builtin:NAME",
-        )),
+        Some(name) => {
+            if !defines.is_empty() {
+                return Err(SceneError::new(spec, None, "-D applies to scene files only"));
+            }
+            builtin::build(name)
+        }
+        None => {
+            let loaded = xml::load(std::path::Path::new(spec), defines)?;
+            for w in &loaded.warnings {
+                eprintln!("warning: {w}");
+            }
+            Ok(loaded.scene)
+        }
     }
 }

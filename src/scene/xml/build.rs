@@ -1,0 +1,437 @@
+//! Resolving and building: ids and refs, the sensor (camera, film, filter, sampler), the
+//! integrator, BSDFs and emitters, each mapped to lightlab's own types with Mitsuba 3's
+//! parameter names and defaults.
+
+use std::collections::HashMap;
+use std::path::Path;
+
+use glam::{Affine3A, Vec3};
+
+use super::XmlError;
+use super::props::Props;
+use super::shapes;
+use super::tree::Element;
+use crate::bsdf::{Diffuse, Material, Phong};
+use crate::image::Filter;
+use crate::integrator::{MisHeuristic, MisSettings};
+use crate::math::Spectrum;
+use crate::render::camera::Camera;
+use crate::sampling::SamplerKind;
+use crate::scene::{Requested, Scene, SceneBuilder};
+
+/// BSDF types this loader knows.
+const BSDFS: [&str; 7] = [
+    "diffuse",
+    "twosided",
+    "phong",
+    "conductor",
+    "roughconductor",
+    "plastic",
+    "roughplastic",
+];
+
+/// The loader's state while building one scene.
+pub struct Context<'a> {
+    ids: HashMap<&'a str, &'a Element>,
+    materials: HashMap<*const Element, u32>,
+    default_material: Option<u32>,
+    /// The scene under construction.
+    pub builder: SceneBuilder,
+    /// Located warnings.
+    pub warnings: &'a mut Vec<String>,
+}
+
+impl<'a> Context<'a> {
+    /// The element `el` stands for: itself, or the target of a `<ref id>`.
+    pub fn resolve(&self, el: &'a Element) -> Result<&'a Element, XmlError> {
+        if el.tag != "ref" {
+            return Ok(el);
+        }
+        let id = el.required("id")?;
+        self.ids
+            .get(id)
+            .copied()
+            .ok_or_else(|| el.error(format!("no element has id \"{id}\"")))
+    }
+
+    /// Reports the unused properties of `p`.
+    pub fn finish(&mut self, p: &Props<'_>) {
+        p.unused(self.warnings);
+    }
+
+    /// The material index of a `<bsdf>` (built once per element).
+    pub fn material(&mut self, el: &'a Element) -> Result<u32, XmlError> {
+        let key = el as *const Element;
+        if let Some(&m) = self.materials.get(&key) {
+            return Ok(m);
+        }
+        let (material, two_sided) = self.bsdf(el)?;
+        let m = self.builder.material(material);
+        if two_sided {
+            self.builder.set_two_sided(m);
+        }
+        self.materials.insert(key, m);
+        Ok(m)
+    }
+
+    /// Mitsuba's default BSDF: diffuse with reflectance 0.5.
+    pub fn default_material(&mut self) -> u32 {
+        if let Some(m) = self.default_material {
+            return m;
+        }
+        let m = self.builder.material(Material::Diffuse(Diffuse {
+            reflectance: Spectrum::splat(0.5),
+        }));
+        self.default_material = Some(m);
+        m
+    }
+
+    /// A BSDF element as a material and whether it is two-sided.
+    fn bsdf(&mut self, el: &'a Element) -> Result<(Material, bool), XmlError> {
+        let ty = el.required("type")?;
+        let p = Props::new(el)?;
+        let result = match ty {
+            "diffuse" => (
+                Material::Diffuse(Diffuse {
+                    reflectance: p.spectrum("reflectance", Spectrum::splat(0.5))?,
+                }),
+                false,
+            ),
+            // Mitsuba 0.6's modified Phong; the same model as ours.
+            "phong" => {
+                let exponent = p.float("exponent", 30.0)?;
+                if exponent < 0.0 {
+                    return Err(el.error(format!("exponent must be ≥ 0, not {exponent}")));
+                }
+                (
+                    Material::Phong(Phong {
+                        kd: p.spectrum("diffuse_reflectance", Spectrum::splat(0.5))?,
+                        ks: p.spectrum("specular_reflectance", Spectrum::splat(0.2))?,
+                        exponent,
+                    }),
+                    false,
+                )
+            }
+            "twosided" => {
+                let inner: Vec<&Element> = p
+                    .nested()
+                    .into_iter()
+                    .map(|c| self.resolve(c))
+                    .collect::<Result<_, _>>()?;
+                match inner.as_slice() {
+                    [b] if b.tag == "bsdf" => (self.bsdf(b)?.0, true),
+                    [_, _] => {
+                        return Err(el.error(
+                            "a different BSDF on each side is not supported (give one BSDF)",
+                        ));
+                    }
+                    _ => return Err(el.error("twosided needs exactly one nested <bsdf>")),
+                }
+            }
+            "conductor" | "roughconductor" | "plastic" | "roughplastic" => {
+                return Err(el.error(format!(
+                    "BSDF \"{ty}\" is not yet supported (it arrives with the microfacet BSDFs)"
+                )));
+            }
+            other => {
+                return Err(el.error(format!(
+                    "unknown BSDF type \"{other}\" (known: {})",
+                    BSDFS.join(", ")
+                )));
+            }
+        };
+        self.finish(&p);
+        Ok(result)
+    }
+}
+
+/// Collects `id`s of the whole tree; duplicates are an error.
+fn index_ids<'a>(
+    el: &'a Element,
+    ids: &mut HashMap<&'a str, &'a Element>,
+) -> Result<(), XmlError> {
+    for c in &el.children {
+        if c.tag != "ref"
+            && let Some(id) = c.attr("id")
+            && ids.insert(id, c).is_some()
+        {
+            return Err(c.error(format!("id \"{id}\" is used twice")));
+        }
+        index_ids(c, ids)?;
+    }
+    Ok(())
+}
+
+/// What the `<sensor>` sets up.
+struct SensorSetup {
+    camera: Camera,
+    spp: u32,
+    filter: Filter,
+    sampler: SamplerKind,
+    seed: u64,
+}
+
+/// Builds the scene from the `<scene>` root.
+pub fn build(root: &Element, path: &Path, warnings: &mut Vec<String>) -> Result<Scene, XmlError> {
+    let mut ids = HashMap::new();
+    index_ids(root, &mut ids)?;
+    let mut ctx = Context {
+        ids,
+        materials: HashMap::new(),
+        default_material: None,
+        builder: SceneBuilder::new(path.display().to_string()),
+        warnings,
+    };
+    let mut sensor = None;
+    let mut mis = None;
+    for c in &root.children {
+        match c.tag.as_str() {
+            "sensor" => {
+                if sensor.is_some() {
+                    return Err(c.error("only one <sensor> is supported"));
+                }
+                sensor = Some(build_sensor(&mut ctx, c)?);
+            }
+            "integrator" => mis = Some(build_integrator(&mut ctx, c)?),
+            "shape" => shapes::add_shape(&mut ctx, c)?,
+            "emitter" => build_emitter(&mut ctx, c)?,
+            // Declared for reference by id; built where used.
+            "bsdf" | "texture" => {}
+            other => {
+                return Err(c.error(format!(
+                    "unexpected <{other}> in <scene> (known: sensor, integrator, shape, \
+                     emitter, bsdf, texture, default, include)"
+                )));
+            }
+        }
+    }
+    let Some(sensor) = sensor else {
+        return Err(root.error("the scene has no <sensor>"));
+    };
+    let mut scene = ctx.builder.build(sensor.camera, sensor.spp)?;
+    scene.requested = Requested {
+        filter: sensor.filter,
+        sampler: Some(sensor.sampler),
+        seed: Some(sensor.seed),
+        mis,
+    };
+    Ok(scene)
+}
+
+/// `<sensor type="perspective">` with its film and sampler.
+fn build_sensor<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<SensorSetup, XmlError> {
+    let ty = el.required("type")?;
+    if ty != "perspective" {
+        return Err(el.error(format!(
+            "sensor type \"{ty}\" is not supported (known: perspective)"
+        )));
+    }
+    let p = Props::new(el)?;
+    let to_world = p.transform("to_world")?;
+    let fov = p.float("fov", 0.0)?;
+    if !p.has("fov") {
+        return Err(el.error("missing <float name=\"fov\">"));
+    }
+    if !(fov > 0.0 && fov < 180.0) {
+        return Err(el.error(format!("fov must be in (0, 180) degrees, not {fov}")));
+    }
+    let axis = p.string("fov_axis", "x")?;
+    let near_clip = p.float("near_clip", 0.01)?;
+    let far_clip = p.float("far_clip", 1e4)?;
+    if !(near_clip > 0.0 && far_clip > near_clip) {
+        return Err(el.error("need 0 < near_clip < far_clip"));
+    }
+    let mut width = 768;
+    let mut height = 576;
+    let mut filter = Filter::GAUSSIAN;
+    let mut spp = 4;
+    let mut sampler = SamplerKind::Independent;
+    let mut seed = 0;
+    for c in p.nested() {
+        let c = ctx.resolve(c)?;
+        match c.tag.as_str() {
+            "film" => (width, height, filter) = build_film(ctx, c)?,
+            "sampler" => (sampler, spp, seed) = build_sampler(ctx, c)?,
+            other => return Err(c.error(format!("unexpected <{other}> inside <sensor>"))),
+        }
+    }
+    let (w, h) = (width as f32, height as f32);
+    let tan_half = (0.5 * fov.to_radians()).tan();
+    // Mitsuba converts the field of view to the x axis (perspective.cpp, parse_fov).
+    let tan_x = match axis.as_str() {
+        "x" => tan_half,
+        "y" => tan_half * w / h,
+        "diagonal" => tan_half * w / (w * w + h * h).sqrt(),
+        "smaller" if w > h => tan_half * w / h,
+        "smaller" => tan_half,
+        "larger" if w < h => tan_half * w / h,
+        "larger" => tan_half,
+        other => {
+            return Err(el.error(format!(
+                "unknown fov_axis \"{other}\" (known: x, y, diagonal, smaller, larger)"
+            )));
+        }
+    };
+    let m = Affine3A::from_mat4(to_world);
+    if m.matrix3.determinant().abs() < 1e-12 {
+        return Err(el.error("sensor to_world is singular"));
+    }
+    let mut camera = Camera::new(m, 2.0 * tan_x.atan().to_degrees(), width, height);
+    camera.near_clip = near_clip;
+    ctx.finish(&p);
+    Ok(SensorSetup {
+        camera,
+        spp,
+        filter,
+        sampler,
+        seed,
+    })
+}
+
+/// `<film type="hdrfilm">`: size and reconstruction filter.
+fn build_film<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(u32, u32, Filter), XmlError> {
+    let ty = el.required("type")?;
+    if ty != "hdrfilm" {
+        return Err(el.error(format!("film type \"{ty}\" is not supported (known: hdrfilm)")));
+    }
+    let p = Props::new(el)?;
+    let width = p.count("width", 768, 32768)?;
+    let height = p.count("height", 576, 32768)?;
+    if width == 0 || height == 0 {
+        return Err(el.error("width and height must be at least 1"));
+    }
+    for ignored in ["pixel_format", "component_format", "file_format"] {
+        p.ignore(ignored);
+    }
+    let mut filter = Filter::GAUSSIAN;
+    for c in p.nested() {
+        let c = ctx.resolve(c)?;
+        if c.tag != "rfilter" {
+            return Err(c.error("only an <rfilter> can be nested in <film>"));
+        }
+        let ty = c.required("type")?;
+        let fp = Props::new(c)?;
+        filter = match ty {
+            "box" => Filter::Box {
+                radius: fp.float("radius", 0.5)?,
+            },
+            "tent" => Filter::Tent {
+                radius: fp.float("radius", 1.0)?,
+            },
+            "gaussian" => Filter::Gaussian {
+                stddev: fp.float("stddev", 0.5)?,
+            },
+            other => {
+                return Err(c.error(format!(
+                    "unknown rfilter \"{other}\" (known: box, tent, gaussian)"
+                )));
+            }
+        };
+        filter.validate().map_err(|e| c.error(e))?;
+        ctx.finish(&fp);
+    }
+    ctx.finish(&p);
+    Ok((width, height, filter))
+}
+
+/// `<sampler>`: Mitsuba's samplers mapped to ours (`multijitter` → stratified,
+/// `ldsampler` → sobol), `sample_count` and `seed`.
+fn build_sampler<'a>(
+    ctx: &mut Context<'a>,
+    el: &'a Element,
+) -> Result<(SamplerKind, u32, u64), XmlError> {
+    let ty = el.required("type")?;
+    let kind = match ty {
+        "independent" => SamplerKind::Independent,
+        "stratified" | "multijitter" => SamplerKind::Stratified,
+        "ldsampler" => SamplerKind::Sobol,
+        other => {
+            return Err(el.error(format!(
+                "unknown sampler \"{other}\" (known: independent, stratified, multijitter, ldsampler)"
+            )));
+        }
+    };
+    let p = Props::new(el)?;
+    let spp = p.count("sample_count", 4, 1 << 20)?;
+    if spp == 0 {
+        return Err(el.error("sample_count must be at least 1"));
+    }
+    let seed = p.count("seed", 0, u32::MAX)? as u64;
+    p.ignore("jitter");
+    ctx.finish(&p);
+    Ok((kind, spp, seed))
+}
+
+/// `<integrator>`: `direct` (power heuristic with `emitter_samples` light and
+/// `bsdf_samples` BSDF samples, as Mitsuba 3's direct.cpp) or `path` with
+/// `max_depth` 2, which is the same estimator with one sample of each.
+fn build_integrator<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<MisSettings, XmlError> {
+    let ty = el.required("type")?;
+    let p = Props::new(el)?;
+    let mis = match ty {
+        "direct" => {
+            let shading = p.count("shading_samples", 1, 1024)?;
+            if p.has("shading_samples") && (p.has("emitter_samples") || p.has("bsdf_samples")) {
+                return Err(el.error(
+                    "give shading_samples or emitter_samples/bsdf_samples, not both",
+                ));
+            }
+            let light_samples = p.count("emitter_samples", shading, 1024)?;
+            let bsdf_samples = p.count("bsdf_samples", shading, 1024)?;
+            if light_samples + bsdf_samples == 0 {
+                return Err(el.error("need at least one emitter or BSDF sample"));
+            }
+            MisSettings {
+                heuristic: MisHeuristic::Power,
+                light_samples,
+                bsdf_samples,
+            }
+        }
+        "path" => {
+            let depth = p.int("max_depth", -1)?;
+            if depth != 2 {
+                return Err(el.error(format!(
+                    "path with max_depth {depth} is not supported: lightlab renders direct \
+                     light only (max_depth 2)"
+                )));
+            }
+            p.ignore("rr_depth");
+            MisSettings::default()
+        }
+        other => {
+            return Err(el.error(format!(
+                "integrator \"{other}\" is not supported (known: direct, path with max_depth 2)"
+            )));
+        }
+    };
+    if p.bool("hide_emitters", false)? {
+        return Err(el.error("hide_emitters is not supported"));
+    }
+    ctx.finish(&p);
+    Ok(mis)
+}
+
+/// A top-level `<emitter>`: `point` (`intensity`, `position` or `to_world`).
+fn build_emitter<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlError> {
+    let ty = el.required("type")?;
+    match ty {
+        "point" => {
+            let p = Props::new(el)?;
+            let intensity = p.spectrum("intensity", Spectrum::ONE)?;
+            let to_world = p.transform("to_world")?;
+            let position = if p.has("position") {
+                p.vec3("position", Vec3::ZERO)?
+            } else {
+                to_world.transform_point3(Vec3::ZERO)
+            };
+            ctx.builder.point_light(position, intensity);
+            ctx.finish(&p);
+            Ok(())
+        }
+        "area" => Err(el.error("an area emitter must be nested in a <shape>")),
+        "constant" | "envmap" | "directional" | "spot" | "projector" | "sunsky" => Err(el.error(
+            format!("emitter \"{ty}\" is not yet supported (known: area, point)"),
+        )),
+        other => Err(el.error(format!("unknown emitter \"{other}\" (known: area, point)"))),
+    }
+}
