@@ -48,3 +48,23 @@ pub fn fan(polygon: &[u32], out: &mut Vec<[u32; 3]>) {
         out.push([polygon[0], polygon[i], polygon[i + 1]]);
     }
 }
+
+/// Smooth vertex normals for a mesh that has none, as Mitsuba 3 computes them: each face
+/// adds its unit normal weighted by the angle at the vertex (Thürmer & Wüthrich 1998,
+/// "Computing Vertex Normals from Polygonal Facets").
+pub fn compute_vertex_normals(mesh: &mut Mesh) {
+    let mut normals = vec![glam::Vec3::ZERO; mesh.positions.len()];
+    for tri in &mesh.indices {
+        let p = tri.map(|i| mesh.positions[i as usize]);
+        let n = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero();
+        for k in 0..3 {
+            let (a, b) = (p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
+            let angle = a.normalize_or_zero().dot(b.normalize_or_zero()).clamp(-1.0, 1.0).acos();
+            normals[tri[k] as usize] += n * angle;
+        }
+    }
+    for n in normals.iter_mut() {
+        *n = n.normalize_or_zero();
+    }
+    mesh.normals = normals;
+}

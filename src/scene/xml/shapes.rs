@@ -134,6 +134,9 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
             let mut mesh = mesh;
             if p.bool("face_normals", false)? {
                 mesh.normals.clear();
+            } else if mesh.normals.is_empty() {
+                // Mitsuba 3 smooths meshes that come without normals.
+                mesh_io::compute_vertex_normals(&mut mesh);
             }
             p.ignore("flip_tex_coords");
             let mesh = transform_mesh(mesh, to_world, flip);

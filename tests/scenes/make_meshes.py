@@ -1,0 +1,82 @@
+#!/usr/bin/env python3
+"""Writes the small meshes the conformance scenes use (run once; outputs are committed):
+meshes/torus.obj (no normals: Mitsuba smooths it), meshes/ball.ply (binary, normals and
+uv), meshes/shapes.serialized (two shapes, version 4, zlib)."""
+import math
+import os
+import struct
+import zlib
+
+HERE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "meshes")
+
+
+def torus(R=0.7, r=0.25, nu=20, nv=10):
+    v, f = [], []
+    for i in range(nu):
+        for j in range(nv):
+            a, b = 2 * math.pi * i / nu, 2 * math.pi * j / nv
+            v.append(((R + r * math.cos(b)) * math.cos(a), r * math.sin(b), (R + r * math.cos(b)) * math.sin(a)))
+    for i in range(nu):
+        for j in range(nv):
+            a, b = i * nv + j, ((i + 1) % nu) * nv + j
+            c, d = ((i + 1) % nu) * nv + (j + 1) % nv, i * nv + (j + 1) % nv
+            f.append((a, d, c, b))  # quads: fan-triangulated by the loaders
+    return v, f
+
+
+def ball(nu=16, nv=8):
+    v, n, uv, f = [], [], [], []
+    for j in range(nv + 1):
+        for i in range(nu + 1):
+            t, p = math.pi * j / nv, 2 * math.pi * i / nu
+            d = (math.sin(t) * math.cos(p), math.cos(t), math.sin(t) * math.sin(p))
+            v.append(d), n.append(d), uv.append((i / nu, j / nv))
+    for j in range(nv):
+        for i in range(nu):
+            a, b = j * (nu + 1) + i, (j + 1) * (nu + 1) + i
+            f.append((a, a + 1, b + 1)), f.append((a, b + 1, b))
+    return v, n, uv, f
+
+
+def serialized_shape(v, f):
+    body = struct.pack("<I", 0x1000) + b"shape\0" + struct.pack("<QQ", len(v), len(f))
+    body += b"".join(struct.pack("<3f", *p) for p in v)
+    body += b"".join(struct.pack("<3I", *t) for t in f)
+    return struct.pack("<HH", 0x041C, 4) + zlib.compress(body)
+
+
+def main():
+    os.makedirs(HERE, exist_ok=True)
+    v, f = torus()
+    with open(os.path.join(HERE, "torus.obj"), "w") as out:
+        out.write("# torus, quads, no normals\n")
+        out.writelines(f"v {x:.6f} {y:.6f} {z:.6f}\n" for x, y, z in v)
+        out.writelines("f " + " ".join(str(i + 1) for i in q) + "\n" for q in f)
+    v, n, uv, f = ball()
+    with open(os.path.join(HERE, "ball.ply"), "wb") as out:
+        out.write((f"ply\nformat binary_little_endian 1.0\nelement vertex {len(v)}\n"
+                   "property float x\nproperty float y\nproperty float z\n"
+                   "property float nx\nproperty float ny\nproperty float nz\n"
+                   "property float u\nproperty float v\n"
+                   f"element face {len(f)}\nproperty list uchar int vertex_indices\nend_header\n").encode())
+        for p, q, t in zip(v, n, uv):
+            out.write(struct.pack("<8f", *p, *q, *t))
+        for t in f:
+            out.write(struct.pack("<B3i", 3, *t))
+    # A pyramid (shape 0) and a tetrahedron (shape 1); the file ends with the offsets.
+    pyramid = ([(-1, 0, -1), (1, 0, -1), (1, 0, 1), (-1, 0, 1), (0, 1.2, 0)],
+               [(0, 4, 1), (1, 4, 2), (2, 4, 3), (3, 4, 0), (0, 1, 2), (0, 2, 3)])
+    tet = ([(-0.8, 0, -0.6), (0.8, 0, -0.6), (0, 0, 0.8), (0, 1.1, 0)],
+           [(0, 3, 1), (1, 3, 2), (2, 3, 0), (0, 1, 2)])
+    blobs = [serialized_shape(*pyramid), serialized_shape(*tet)]
+    data, offsets = b"", []
+    for b in blobs:
+        offsets.append(len(data))
+        data += b
+    data += b"".join(struct.pack("<Q", o) for o in offsets) + struct.pack("<I", len(blobs))
+    with open(os.path.join(HERE, "shapes.serialized"), "wb") as out:
+        out.write(data)
+
+
+if __name__ == "__main__":
+    main()
