@@ -268,6 +268,16 @@ fn attr_vec3(c: &Element, name: &str) -> Result<Vec3, XmlError> {
     }
 }
 
+/// Mitsuba 3's `up` when a `<lookat>` gives none: the first tangent of
+/// `coordinate_system(dir)` (Duff et al. 2017, "Building an Orthonormal Basis,
+/// Revisited").
+fn default_up(n: Vec3) -> Vec3 {
+    let sign = 1f32.copysign(n.z);
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x)
+}
+
 /// A `<transform>`: its operations composed in order, each applied after the ones before
 /// it (M = Tₙ ⋯ T₂ T₁, as Mitsuba's loader does).
 pub fn parse_transform(t: &Element) -> Result<Mat4, XmlError> {
@@ -299,11 +309,11 @@ pub fn parse_transform(t: &Element) -> Result<Mat4, XmlError> {
             "lookat" => {
                 let origin = attr_vec3(c, "origin")?;
                 let target = attr_vec3(c, "target")?;
+                let dir = target - origin;
                 let up = match c.attr("up") {
                     Some(_) => attr_vec3(c, "up")?,
-                    None => Vec3::Y,
+                    None => default_up(dir.normalize_or_zero()),
                 };
-                let dir = target - origin;
                 if dir.length_squared() == 0.0 || up.cross(dir).length_squared() == 0.0 {
                     return Err(c.error("lookat: origin equals target, or up is parallel to the view"));
                 }
