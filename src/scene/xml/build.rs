@@ -417,7 +417,7 @@ fn build_emitter<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
     match ty {
         "point" => {
             let p = Props::new(el)?;
-            let intensity = p.spectrum("intensity", Spectrum::ONE)?;
+            let intensity = p.emission("intensity", Spectrum::ONE)?;
             let to_world = p.transform("to_world")?;
             let position = if p.has("position") {
                 p.vec3("position", Vec3::ZERO)?

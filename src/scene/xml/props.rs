@@ -21,6 +21,13 @@ pub const OBJECT_TAGS: [&str; 9] = [
     "bsdf", "emitter", "shape", "sensor", "film", "sampler", "rfilter", "integrator", "texture",
 ];
 
+/// Illuminant E (XYZ = 1, 1, 1) in linear sRGB, by the sRGB matrix (IEC 61966-2-1).
+const XYZ_E_TO_SRGB: Spectrum = Spectrum::new(
+    3.240_479 - 1.537_150 - 0.498_535,
+    -0.969_256 + 1.875_991 + 0.041_556,
+    0.055_648 - 0.204_043 + 1.057_311,
+);
+
 /// The properties and nested objects of a plugin element.
 pub struct Props<'a> {
     /// The plugin element.
@@ -129,9 +136,21 @@ impl<'a> Props<'a> {
         Ok(c.required("value")?.to_owned())
     }
 
-    /// A colour: `<rgb>`, a uniform `<spectrum>`, or a `<float>`; or `default`. A
-    /// `<texture>` is reported as not supported.
+    /// A reflectance colour: `<rgb>`, a uniform `<spectrum>`, or a `<float>`; or
+    /// `default`. A `<texture>` is reported as not supported.
     pub fn spectrum(&self, name: &str, default: Spectrum) -> Result<Spectrum, XmlError> {
+        self.colour(name, default, Spectrum::ONE)
+    }
+
+    /// An emitted colour (radiance, intensity). As in Mitsuba 3's RGB variants, a uniform
+    /// `<spectrum value="v">` is an equal-energy illuminant: XYZ = (v, v, v) converted to
+    /// linear sRGB, v · (1.204794, 0.948291, 0.908916); `<rgb>` and `<float>` are taken as
+    /// they are.
+    pub fn emission(&self, name: &str, default: Spectrum) -> Result<Spectrum, XmlError> {
+        self.colour(name, default, XYZ_E_TO_SRGB)
+    }
+
+    fn colour(&self, name: &str, default: Spectrum, uniform_white: Spectrum) -> Result<Spectrum, XmlError> {
         if let Some(t) = self.object_named("texture", name) {
             return Err(t.error("textures are not supported yet (only constant colours)"));
         }
@@ -156,7 +175,7 @@ impl<'a> Props<'a> {
                     ));
                 }
                 match parse_floats(c, v)?.as_slice() {
-                    [a] => Spectrum::splat(*a),
+                    [a] => uniform_white * *a,
                     _ => return Err(c.error("a spectrum must be one uniform value")),
                 }
             }

@@ -162,7 +162,7 @@ fn area_emitter<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<Emission, 
         )));
     }
     let p = Props::new(el)?;
-    let radiance = p.spectrum("radiance", Spectrum::ONE)?;
+    let radiance = p.emission("radiance", Spectrum::ONE)?;
     ctx.finish(&p);
     Ok(Emission::new(radiance))
 }
