@@ -18,13 +18,20 @@ const SCENE: &str = r#"<scene version="3.0.0">
 </scene>"#;
 
 fn render(filter: &str, sphere: bool, threads: usize, pass: Pass) -> Film {
-    let sphere = if sphere { r#"<shape type="sphere"><float name="radius" value="0.5"/></shape>"# } else { "" };
+    let sphere = if sphere {
+        r#"<shape type="sphere"><float name="radius" value="0.5"/></shape>"#
+    } else {
+        ""
+    };
     let text = SCENE.replace("FILTER", filter).replace("SPHERE", sphere);
     let scene = xml::load_str(&text, &[]).expect("scene").scene;
     let mut s = RenderSettings::for_scene(&scene);
     s.spp = 16;
     s.pass = pass;
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
     pool.install(|| render_quiet(&scene, &s).film)
 }
 
@@ -51,7 +58,14 @@ fn a_constant_image_stays_constant_under_every_filter() {
     for filter in ["box", "tent", "gaussian"] {
         let film = render(filter, false, 2, Pass::WHOLE);
         for p in &film.pixels {
-            assert!((p.mean - glam::Vec3::new(2.0, 3.0, 4.0)).abs().max_element() < 1e-4, "{filter}: {:?}", p.mean);
+            assert!(
+                (p.mean - glam::Vec3::new(2.0, 3.0, 4.0))
+                    .abs()
+                    .max_element()
+                    < 1e-4,
+                "{filter}: {:?}",
+                p.mean
+            );
             assert!(p.variance_of_mean().max_element() < 1e-8);
         }
     }

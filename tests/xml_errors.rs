@@ -4,8 +4,8 @@
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::PathBuf;
 
-use lightlab::scene::xml::{self, Loaded};
 use lightlab::scene::SceneError;
+use lightlab::scene::xml::{self, Loaded};
 
 fn load(text: &str) -> Result<Loaded, SceneError> {
     xml::load_str(text, &[])
@@ -22,17 +22,65 @@ fn scene(body: &str) -> String {
 fn errors_name_line_column_and_element() {
     // (scene text, (line, column), words the message must contain)
     let cases: &[(String, (u32, u32), &[&str])] = &[
-        (scene(r#"<shape type="sphere"><bsdf type="foo"/></shape>"#), (4, 22), &["<bsdf type=\"foo\">", "unknown BSDF type \"foo\"", "known: diffuse"]),
-        (scene(r#"<shape type="teapot"/>"#), (4, 1), &["unknown shape type \"teapot\""]),
-        (scene(r#"<shape type="obj"><string name="filename" value="missing.obj"/></shape>"#), (4, 1), &["missing.obj"]),
-        (scene(r#"<shape type="sphere"><float name="radius" value="nan"/></shape>"#), (4, 22), &["not a finite number"]),
-        (scene(r#"<shape type="sphere"><ref id="nothing"/></shape>"#), (4, 22), &["no element has id \"nothing\""]),
-        (scene(r#"<emitter type="envmap"/>"#), (4, 1), &["not yet supported"]),
-        (scene(r#"<integrator type="path"><integer name="max_depth" value="5"/></integrator>"#), (4, 1), &["max_depth 5"]),
-        (scene(r#"<shape type="sphere"><float name="radius" value="$r"/></shape>"#), (4, 22), &["undefined parameter $r"]),
-        (scene(r#"<shape type="sphere" id="a"/><shape type="sphere" id="a"/>"#), (4, 30), &["id \"a\" is used twice"]),
-        (scene(r#"<include filename="nowhere.xml"/>"#), (4, 1), &["cannot read scene file", "nowhere.xml"]),
-        ("<scene version=\"3.0.0\">\n<shape type=\"sphere\">\n</scene>".to_string(), (3, 1), &["malformed XML"]),
+        (
+            scene(r#"<shape type="sphere"><bsdf type="foo"/></shape>"#),
+            (4, 22),
+            &[
+                "<bsdf type=\"foo\">",
+                "unknown BSDF type \"foo\"",
+                "known: diffuse",
+            ],
+        ),
+        (
+            scene(r#"<shape type="teapot"/>"#),
+            (4, 1),
+            &["unknown shape type \"teapot\""],
+        ),
+        (
+            scene(r#"<shape type="obj"><string name="filename" value="missing.obj"/></shape>"#),
+            (4, 1),
+            &["missing.obj"],
+        ),
+        (
+            scene(r#"<shape type="sphere"><float name="radius" value="nan"/></shape>"#),
+            (4, 22),
+            &["not a finite number"],
+        ),
+        (
+            scene(r#"<shape type="sphere"><ref id="nothing"/></shape>"#),
+            (4, 22),
+            &["no element has id \"nothing\""],
+        ),
+        (
+            scene(r#"<emitter type="envmap"/>"#),
+            (4, 1),
+            &["not yet supported"],
+        ),
+        (
+            scene(r#"<integrator type="path"><integer name="max_depth" value="5"/></integrator>"#),
+            (4, 1),
+            &["max_depth 5"],
+        ),
+        (
+            scene(r#"<shape type="sphere"><float name="radius" value="$r"/></shape>"#),
+            (4, 22),
+            &["undefined parameter $r"],
+        ),
+        (
+            scene(r#"<shape type="sphere" id="a"/><shape type="sphere" id="a"/>"#),
+            (4, 30),
+            &["id \"a\" is used twice"],
+        ),
+        (
+            scene(r#"<include filename="nowhere.xml"/>"#),
+            (4, 1),
+            &["cannot read scene file", "nowhere.xml"],
+        ),
+        (
+            "<scene version=\"3.0.0\">\n<shape type=\"sphere\">\n</scene>".to_string(),
+            (3, 1),
+            &["malformed XML"],
+        ),
         ("<scene>\n</scene>".to_string(), (1, 1), &["version"]),
     ];
     for (text, (line, col), words) in cases {
@@ -69,7 +117,11 @@ fn include_cycles_stop_at_the_depth_limit() {
     let dir = std::env::temp_dir().join(format!("lightlab-include-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("self.xml");
-    std::fs::write(&path, "<scene version=\"3.0.0\">\n  <include filename=\"self.xml\"/>\n</scene>").unwrap();
+    std::fs::write(
+        &path,
+        "<scene version=\"3.0.0\">\n  <include filename=\"self.xml\"/>\n</scene>",
+    )
+    .unwrap();
     let e = xml::load(&path, &[]).unwrap_err();
     assert!(e.to_string().contains("deeper than"), "{e}");
     assert_eq!(e.location, Some((2, 3)));
@@ -88,11 +140,30 @@ fn splitmix(state: &mut u64) -> u64 {
 #[test]
 fn garbage_and_mutated_scenes_never_panic() {
     let scenes = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/scenes");
-    let originals: Vec<String> = ["cbox_diffuse", "path_include", "legacy_v06", "mesh_ply_serialized"]
-        .iter()
-        .map(|n| std::fs::read_to_string(scenes.join(format!("{n}.xml"))).unwrap())
-        .collect();
-    let tokens = ["<", ">", "\"", "/>", "nan", "-1", "1e40", "$x", "<ref id=\"q\"/>", "0", "", "&", "type=\"box\""];
+    let originals: Vec<String> = [
+        "cbox_diffuse",
+        "path_include",
+        "legacy_v06",
+        "mesh_ply_serialized",
+    ]
+    .iter()
+    .map(|n| std::fs::read_to_string(scenes.join(format!("{n}.xml"))).unwrap())
+    .collect();
+    let tokens = [
+        "<",
+        ">",
+        "\"",
+        "/>",
+        "nan",
+        "-1",
+        "1e40",
+        "$x",
+        "<ref id=\"q\"/>",
+        "0",
+        "",
+        "&",
+        "type=\"box\"",
+    ];
     let mut state = 7u64;
     let mut errors = 0;
     for i in 0..600 {

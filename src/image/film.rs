@@ -180,9 +180,18 @@ mod tests {
     #[test]
     fn weighted_stats_match_direct_formulas_and_merge() {
         let xs: Vec<(f32, f32)> = (0..40)
-            .map(|i| (((i * 13 % 7) as f32).cos() * 2.0, 0.1 + (i % 5) as f32 * 0.3))
+            .map(|i| {
+                (
+                    ((i * 13 % 7) as f32).cos() * 2.0,
+                    0.1 + (i % 5) as f32 * 0.3,
+                )
+            })
             .collect();
-        let (mut all, mut a, mut b) = (PixelStats::default(), PixelStats::default(), PixelStats::default());
+        let (mut all, mut a, mut b) = (
+            PixelStats::default(),
+            PixelStats::default(),
+            PixelStats::default(),
+        );
         for (i, &(x, w)) in xs.iter().enumerate() {
             all.add_weighted(Spectrum::splat(x), w);
             let part: &mut PixelStats = if i < 11 { &mut a } else { &mut b };

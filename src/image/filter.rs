@@ -71,9 +71,7 @@ impl Filter {
         if r.is_finite() && r > 0.0 && r <= 16.0 {
             Ok(())
         } else {
-            Err(format!(
-                "filter radius must be in (0, 16] pixels, not {r}"
-            ))
+            Err(format!("filter radius must be in (0, 16] pixels, not {r}"))
         }
     }
 

@@ -11,12 +11,12 @@ pub use builder::SceneBuilder;
 pub use error::SceneError;
 
 use crate::bsdf::Material;
+use crate::geometry::Geometry;
 use crate::image::Filter;
 use crate::integrator::MisSettings;
-use crate::sampling::SamplerKind;
-use crate::geometry::Geometry;
 use crate::light::Light;
 use crate::render::camera::Camera;
+use crate::sampling::SamplerKind;
 
 /// A scene ready to render.
 #[derive(Clone, Debug)]
@@ -73,7 +73,11 @@ pub fn load_with(spec: &str, defines: &[(String, String)]) -> Result<Scene, Scen
     match spec.strip_prefix("builtin:") {
         Some(name) => {
             if !defines.is_empty() {
-                return Err(SceneError::new(spec, None, "-D applies to scene files only"));
+                return Err(SceneError::new(
+                    spec,
+                    None,
+                    "-D applies to scene files only",
+                ));
             }
             builtin::build(name)
         }

@@ -29,8 +29,16 @@ pub fn validate(mesh: &Mesh, path: &str) -> Result<(), String> {
         return Err(format!("{path}: vertex positions are not all finite"));
     }
     for (what, len, finite) in [
-        ("normals", mesh.normals.len(), mesh.normals.iter().all(|v| v.is_finite())),
-        ("texture coordinates", mesh.uvs.len(), mesh.uvs.iter().all(|v| v.is_finite())),
+        (
+            "normals",
+            mesh.normals.len(),
+            mesh.normals.iter().all(|v| v.is_finite()),
+        ),
+        (
+            "texture coordinates",
+            mesh.uvs.len(),
+            mesh.uvs.iter().all(|v| v.is_finite()),
+        ),
     ] {
         if len != 0 && len != n {
             return Err(format!("{path}: {len} {what} for {n} vertices"));
@@ -59,7 +67,11 @@ pub fn compute_vertex_normals(mesh: &mut Mesh) {
         let n = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero();
         for k in 0..3 {
             let (a, b) = (p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
-            let angle = a.normalize_or_zero().dot(b.normalize_or_zero()).clamp(-1.0, 1.0).acos();
+            let angle = a
+                .normalize_or_zero()
+                .dot(b.normalize_or_zero())
+                .clamp(-1.0, 1.0)
+                .acos();
             normals[tri[k] as usize] += n * angle;
         }
     }

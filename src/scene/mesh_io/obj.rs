@@ -26,16 +26,24 @@ pub fn load_obj(path: &Path) -> Result<Mesh, String> {
         let count = m.positions.len() / 3;
         let has_n = m.normals.len() == m.positions.len();
         let has_uv = m.texcoords.len() / 2 == count;
-        if !mesh.positions.is_empty() && (has_n != !mesh.normals.is_empty() || has_uv != !mesh.uvs.is_empty()) {
+        if !mesh.positions.is_empty()
+            && (has_n == mesh.normals.is_empty() || has_uv == mesh.uvs.is_empty())
+        {
             return Err(format!(
                 "{name}: objects differ in having normals or texture coordinates"
             ));
         }
-        mesh.positions
-            .extend(m.positions.chunks_exact(3).map(|p| Vec3::new(p[0], p[1], p[2])));
+        mesh.positions.extend(
+            m.positions
+                .chunks_exact(3)
+                .map(|p| Vec3::new(p[0], p[1], p[2])),
+        );
         if has_n {
-            mesh.normals
-                .extend(m.normals.chunks_exact(3).map(|n| Vec3::new(n[0], n[1], n[2])));
+            mesh.normals.extend(
+                m.normals
+                    .chunks_exact(3)
+                    .map(|n| Vec3::new(n[0], n[1], n[2])),
+            );
         }
         if has_uv {
             mesh.uvs

@@ -207,7 +207,10 @@ fn parse_ply(data: &[u8]) -> Result<Mesh, String> {
     for e in &elements {
         // Every record takes at least one byte: refuse counts the file cannot hold.
         if e.count > r.remaining() && !e.props.is_empty() {
-            return Err(format!("element \"{}\" declares {} records, more than the file holds", e.name, e.count));
+            return Err(format!(
+                "element \"{}\" declares {} records, more than the file holds",
+                e.name, e.count
+            ));
         }
         let find = |n: &[&str]| e.props.iter().position(|p| n.contains(&p.name.as_str()));
         let is_vertex = e.name == "vertex";
@@ -281,10 +284,20 @@ mod tests {
                 "ply\nformat {} 1.0\nelement vertex 4\nproperty float x\nproperty float y\n\
                  property float z\nproperty float u\nproperty float v\nelement face 1\n\
                  property list uchar int vertex_indices\nend_header\n",
-                if big { "binary_big_endian" } else { "binary_little_endian" }
+                if big {
+                    "binary_big_endian"
+                } else {
+                    "binary_little_endian"
+                }
             )
             .into_bytes();
-            let f = |x: f32| if big { x.to_be_bytes() } else { x.to_le_bytes() };
+            let f = |x: f32| {
+                if big {
+                    x.to_be_bytes()
+                } else {
+                    x.to_le_bytes()
+                }
+            };
             for p in &a.positions {
                 let uv = a.uvs[a.positions.iter().position(|q| q == p).unwrap()];
                 for x in [p.x, p.y, p.z, uv.x, uv.y] {
@@ -293,7 +306,11 @@ mod tests {
             }
             d.push(4);
             for i in 0..4i32 {
-                d.extend(if big { i.to_be_bytes() } else { i.to_le_bytes() });
+                d.extend(if big {
+                    i.to_be_bytes()
+                } else {
+                    i.to_le_bytes()
+                });
             }
             let b = parse_ply(&d).unwrap();
             assert_eq!(b.positions, a.positions);
@@ -306,7 +323,11 @@ mod tests {
 
     #[test]
     fn garbage_is_an_error() {
-        for bad in ["", "ply\n", "ply\nformat ascii 1.0\nelement vertex 99999999999\nproperty float x\nend_header\n"] {
+        for bad in [
+            "",
+            "ply\n",
+            "ply\nformat ascii 1.0\nelement vertex 99999999999\nproperty float x\nend_header\n",
+        ] {
             assert!(parse_ply(bad.as_bytes()).is_err(), "{bad}");
         }
     }

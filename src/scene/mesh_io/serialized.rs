@@ -39,7 +39,9 @@ fn shape_offset(data: &[u8], index: u32, version: u16) -> Result<usize, String> 
     let tail = data.get(n.saturating_sub(4)..).filter(|t| t.len() == 4);
     let count = u32::from_le_bytes(tail.ok_or("file too short")?.try_into().unwrap_or([0; 4]));
     if index >= count {
-        return Err(format!("shape_index {index} out of range (the file holds {count} shapes)"));
+        return Err(format!(
+            "shape_index {index} out of range (the file holds {count} shapes)"
+        ));
     }
     let width = if version >= 4 { 8 } else { 4 };
     let table = (n - 4)
@@ -84,7 +86,13 @@ impl<R: Read> Stream<R> {
     }
     fn vec3s(&mut self, n: usize, double: bool) -> Result<Vec<Vec3>, String> {
         (0..n)
-            .map(|_| Ok(Vec3::new(self.float(double)?, self.float(double)?, self.float(double)?)))
+            .map(|_| {
+                Ok(Vec3::new(
+                    self.float(double)?,
+                    self.float(double)?,
+                    self.float(double)?,
+                ))
+            })
             .collect()
     }
 }
@@ -93,7 +101,10 @@ impl<R: Read> Stream<R> {
 fn parse_serialized(data: &[u8], index: u32) -> Result<Mesh, String> {
     let head = |at: usize| -> Result<(u16, u16), String> {
         let b = data.get(at..at + 4).ok_or("file too short")?;
-        Ok((u16::from_le_bytes([b[0], b[1]]), u16::from_le_bytes([b[2], b[3]])))
+        Ok((
+            u16::from_le_bytes([b[0], b[1]]),
+            u16::from_le_bytes([b[2], b[3]]),
+        ))
     };
     let (magic, version) = head(0)?;
     if magic != MAGIC {

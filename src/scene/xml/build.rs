@@ -146,10 +146,7 @@ impl<'a> Context<'a> {
 }
 
 /// Collects `id`s of the whole tree; duplicates are an error.
-fn index_ids<'a>(
-    el: &'a Element,
-    ids: &mut HashMap<&'a str, &'a Element>,
-) -> Result<(), XmlError> {
+fn index_ids<'a>(el: &'a Element, ids: &mut HashMap<&'a str, &'a Element>) -> Result<(), XmlError> {
     for c in &el.children {
         if c.tag != "ref"
             && let Some(id) = c.attr("id")
@@ -292,7 +289,9 @@ fn build_sensor<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<SensorSetu
 fn build_film<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(u32, u32, Filter), XmlError> {
     let ty = el.required("type")?;
     if ty != "hdrfilm" {
-        return Err(el.error(format!("film type \"{ty}\" is not supported (known: hdrfilm)")));
+        return Err(el.error(format!(
+            "film type \"{ty}\" is not supported (known: hdrfilm)"
+        )));
     }
     let p = Props::new(el)?;
     let width = p.count("width", 768, 32768)?;
@@ -372,9 +371,9 @@ fn build_integrator<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<MisSet
         "direct" => {
             let shading = p.count("shading_samples", 1, 1024)?;
             if p.has("shading_samples") && (p.has("emitter_samples") || p.has("bsdf_samples")) {
-                return Err(el.error(
-                    "give shading_samples or emitter_samples/bsdf_samples, not both",
-                ));
+                return Err(
+                    el.error("give shading_samples or emitter_samples/bsdf_samples, not both")
+                );
             }
             let light_samples = p.count("emitter_samples", shading, 1024)?;
             let bsdf_samples = p.count("bsdf_samples", shading, 1024)?;

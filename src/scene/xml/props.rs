@@ -12,18 +12,34 @@ use crate::math::Spectrum;
 
 /// Tags that hold a value rather than a nested plugin.
 const VALUE_TAGS: [&str; 10] = [
-    "integer", "float", "boolean", "string", "rgb", "spectrum", "point", "vector", "transform",
+    "integer",
+    "float",
+    "boolean",
+    "string",
+    "rgb",
+    "spectrum",
+    "point",
+    "vector",
+    "transform",
     "ref",
 ];
 
 /// Tags of nested plugins.
 pub const OBJECT_TAGS: [&str; 9] = [
-    "bsdf", "emitter", "shape", "sensor", "film", "sampler", "rfilter", "integrator", "texture",
+    "bsdf",
+    "emitter",
+    "shape",
+    "sensor",
+    "film",
+    "sampler",
+    "rfilter",
+    "integrator",
+    "texture",
 ];
 
 /// Illuminant E (XYZ = 1, 1, 1) in linear sRGB, by the sRGB matrix (IEC 61966-2-1).
 const XYZ_E_TO_SRGB: Spectrum = Spectrum::new(
-    3.240_479 - 1.537_150 - 0.498_535,
+    3.240_479 - 1.537_15 - 0.498_535,
     -0.969_256 + 1.875_991 + 0.041_556,
     0.055_648 - 0.204_043 + 1.057_311,
 );
@@ -66,7 +82,10 @@ impl<'a> Props<'a> {
 
     /// True when a property `name` is given.
     pub fn has(&self, name: &str) -> bool {
-        self.el.children.iter().any(|c| c.attr("name") == Some(name))
+        self.el
+            .children
+            .iter()
+            .any(|c| c.attr("name") == Some(name))
     }
 
     /// Marks a property as read without using it (known but irrelevant here).
@@ -78,7 +97,11 @@ impl<'a> Props<'a> {
         if tags.contains(&c.tag.as_str()) {
             Ok(())
         } else {
-            Err(c.error(format!("expected {} here, not <{}>", tags.join(" or "), c.tag)))
+            Err(c.error(format!(
+                "expected {} here, not <{}>",
+                tags.join(" or "),
+                c.tag
+            )))
         }
     }
 
@@ -109,7 +132,8 @@ impl<'a> Props<'a> {
         if (0..=max as i64).contains(&v) {
             Ok(v as u32)
         } else {
-            Err(self.located(name)
+            Err(self
+                .located(name)
                 .error(format!("\"{name}\" must be in 0..={max}, not {v}")))
         }
     }
@@ -150,7 +174,12 @@ impl<'a> Props<'a> {
         self.colour(name, default, XYZ_E_TO_SRGB)
     }
 
-    fn colour(&self, name: &str, default: Spectrum, uniform_white: Spectrum) -> Result<Spectrum, XmlError> {
+    fn colour(
+        &self,
+        name: &str,
+        default: Spectrum,
+        uniform_white: Spectrum,
+    ) -> Result<Spectrum, XmlError> {
         if let Some(t) = self.object_named("texture", name) {
             return Err(t.error("textures are not supported yet (only constant colours)"));
         }
@@ -334,7 +363,9 @@ pub fn parse_transform(t: &Element) -> Result<Mat4, XmlError> {
                     None => default_up(dir.normalize_or_zero()),
                 };
                 if dir.length_squared() == 0.0 || up.cross(dir).length_squared() == 0.0 {
-                    return Err(c.error("lookat: origin equals target, or up is parallel to the view"));
+                    return Err(
+                        c.error("lookat: origin equals target, or up is parallel to the view")
+                    );
                 }
                 Mat4::from(crate::render::camera::look_at_transform(origin, target, up))
             }

@@ -15,7 +15,15 @@ use crate::scene::builder::Emission;
 use crate::scene::mesh_io;
 
 /// Shape types this loader knows.
-const SHAPES: [&str; 7] = ["obj", "ply", "serialized", "rectangle", "sphere", "disk", "cube"];
+const SHAPES: [&str; 7] = [
+    "obj",
+    "ply",
+    "serialized",
+    "rectangle",
+    "sphere",
+    "disk",
+    "cube",
+];
 
 /// Relative tolerance for "uniform scale" and "perpendicular" checks.
 const TOLERANCE: f32 = 1e-4;
@@ -60,13 +68,14 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
         "sphere" => {
             let center = p.vec3("center", Vec3::ZERO)?;
             let radius = p.float("radius", 1.0)?;
-            let scale = uniform_scale(linear)
-                .ok_or_else(|| el.error("a sphere's to_world must be a uniform scale, rotation and translation"))?;
+            let scale = uniform_scale(linear).ok_or_else(|| {
+                el.error("a sphere's to_world must be a uniform scale, rotation and translation")
+            })?;
             if flip {
                 return Err(el.error("flip_normals on a sphere is not supported"));
             }
             let r = (radius * scale).abs();
-            if !(r > 0.0) {
+            if r.is_nan() || r <= 0.0 {
                 return Err(el.error(format!("radius must be positive, not {radius}")));
             }
             let sphere = Sphere {
@@ -101,7 +110,9 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
         "disk" => {
             let (ex, ey) = (linear * Vec3::X, linear * Vec3::Y);
             let radius = ex.length();
-            if (ey.length() - radius).abs() > TOLERANCE * radius || ex.dot(ey).abs() > TOLERANCE * radius * radius {
+            if (ey.length() - radius).abs() > TOLERANCE * radius
+                || ex.dot(ey).abs() > TOLERANCE * radius * radius
+            {
                 return Err(el.error("a disk's to_world must scale x and y equally (no ellipses)"));
             }
             let n = (normal_matrix * Vec3::Z).normalize() * if flip { -1.0 } else { 1.0 };

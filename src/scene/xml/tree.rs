@@ -142,7 +142,12 @@ fn read_scene(path: &Path, from: Option<&Loc>, depth: usize) -> Result<Element, 
     Ok(root)
 }
 
-fn convert(doc: &roxmltree::Document, node: roxmltree::Node, file: &Rc<str>, dir: &Rc<Path>) -> Element {
+fn convert(
+    doc: &roxmltree::Document,
+    node: roxmltree::Node,
+    file: &Rc<str>,
+    dir: &Rc<Path>,
+) -> Element {
     let pos = doc.text_pos_at(node.range().start);
     Element {
         tag: node.tag_name().name().to_owned(),
@@ -189,7 +194,8 @@ fn expand_includes(el: &mut Element, depth: usize) -> Result<(), XmlError> {
 
 /// (major, minor) of `version="3.0.0"`.
 fn parse_version(root: &Element, v: Option<&str>) -> Result<(u32, u32), XmlError> {
-    let v = v.ok_or_else(|| root.error("missing attribute \"version\" (e.g. version=\"3.0.0\")"))?;
+    let v =
+        v.ok_or_else(|| root.error("missing attribute \"version\" (e.g. version=\"3.0.0\")"))?;
     let mut parts = v.trim().split('.').map(|p| p.parse::<u32>());
     match (parts.next(), parts.next()) {
         (Some(Ok(major)), Some(Ok(minor))) => Ok((major, minor)),
