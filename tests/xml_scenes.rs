@@ -71,6 +71,11 @@ const CASES: &[(&str, &str, Option<&str>)] = &[
         None,
     ),
     (
+        "textures_bitmap",
+        "bitmap PNG (sRGB, nearest, to_uv) by ref, JPEG (bilinear, clamp) in twosided on an OBJ with uv (flip_tex_coords), EXR (mirror)",
+        None,
+    ),
+    (
         "microfacet_conductor",
         "roughconductor (ggx, beckmann anisotropic), conductor",
         Some("roughconductor/conductor arrive with the bsdf branch"),

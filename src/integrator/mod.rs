@@ -84,7 +84,12 @@ impl Estimator {
         w_out: Vec3,
         src: &mut impl Uniform,
     ) -> Spectrum {
-        let material = &scene.materials[hit.material as usize];
+        let mut material = &scene.materials[hit.material as usize];
+        let textured;
+        if let Some(t) = scene.texture(hit.material) {
+            textured = t.apply(material, hit.uv);
+            material = &textured;
+        }
         let flipped;
         let hit = if w_out.dot(hit.ng) < 0.0 && scene.is_two_sided(hit.material) {
             // Mitsuba's `twosided`: the back face is shaded like the front one.

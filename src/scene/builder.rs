@@ -2,6 +2,7 @@
 
 use glam::Vec3;
 
+use super::texture::MaterialTexture;
 use super::{Requested, Scene, SceneError};
 use crate::bsdf::Material;
 use crate::geometry::shape::{Disk, Rectangle, Sphere, Triangle};
@@ -38,6 +39,7 @@ pub struct SceneBuilder {
     materials: Vec<Material>,
     lights: Vec<Light>,
     two_sided: Vec<bool>,
+    textures: Vec<Option<MaterialTexture>>,
 }
 
 impl SceneBuilder {
@@ -50,6 +52,7 @@ impl SceneBuilder {
             materials: Vec::new(),
             lights: Vec::new(),
             two_sided: Vec::new(),
+            textures: Vec::new(),
         }
     }
 
@@ -66,6 +69,15 @@ impl SceneBuilder {
             self.two_sided.resize(m as usize + 1, false);
         }
         self.two_sided[m as usize] = true;
+        self
+    }
+
+    /// Textures material `m`'s reflectance.
+    pub fn set_texture(&mut self, m: u32, texture: MaterialTexture) -> &mut Self {
+        if self.textures.len() <= m as usize {
+            self.textures.resize(m as usize + 1, None);
+        }
+        self.textures[m as usize] = Some(texture);
         self
     }
 
@@ -211,6 +223,7 @@ impl SceneBuilder {
             spp,
             two_sided: self.two_sided,
             requested: Requested::default(),
+            textures: self.textures,
         })
     }
 }

@@ -5,6 +5,7 @@ pub mod builder;
 pub mod builtin;
 mod error;
 pub mod mesh_io;
+pub mod texture;
 pub mod xml;
 
 pub use builder::SceneBuilder;
@@ -17,6 +18,7 @@ use crate::integrator::MisSettings;
 use crate::light::Light;
 use crate::render::camera::Camera;
 use crate::sampling::SamplerKind;
+use texture::MaterialTexture;
 
 /// A scene ready to render.
 #[derive(Clone, Debug)]
@@ -38,6 +40,8 @@ pub struct Scene {
     pub two_sided: Vec<bool>,
     /// Render settings the scene file asks for.
     pub requested: Requested,
+    /// Reflectance textures, by material index; missing entries are untextured.
+    pub textures: Vec<Option<MaterialTexture>>,
 }
 
 /// Render settings a scene file asks for; `None` leaves the renderer's default. Command-
@@ -55,6 +59,12 @@ pub struct Requested {
 }
 
 impl Scene {
+    /// The texture on material `m`'s reflectance, if any.
+    #[inline]
+    pub fn texture(&self, m: u32) -> Option<&MaterialTexture> {
+        self.textures.get(m as usize).and_then(Option::as_ref)
+    }
+
     /// True when material `m` reflects from both sides.
     #[inline]
     pub fn is_two_sided(&self, m: u32) -> bool {

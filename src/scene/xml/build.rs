@@ -8,6 +8,7 @@ use std::path::Path;
 use glam::{Affine3A, Vec3};
 
 use super::XmlError;
+use super::bitmap::load_bitmap;
 use super::props::Props;
 use super::shapes;
 use super::tree::Element;
@@ -17,6 +18,7 @@ use crate::integrator::{MisHeuristic, MisSettings};
 use crate::math::Spectrum;
 use crate::render::camera::Camera;
 use crate::sampling::SamplerKind;
+use crate::scene::texture::{MaterialTexture, Texture};
 use crate::scene::{Requested, Scene, SceneBuilder};
 
 /// BSDF types this loader knows.
@@ -65,10 +67,13 @@ impl<'a> Context<'a> {
         if let Some(&m) = self.materials.get(&key) {
             return Ok(m);
         }
-        let (material, two_sided) = self.bsdf(el)?;
+        let (material, two_sided, texture) = self.bsdf(el)?;
         let m = self.builder.material(material);
         if two_sided {
             self.builder.set_two_sided(m);
+        }
+        if let Some(texture) = texture {
+            self.builder.set_texture(m, MaterialTexture { texture });
         }
         self.materials.insert(key, m);
         Ok(m)
@@ -86,30 +91,52 @@ impl<'a> Context<'a> {
         m
     }
 
-    /// A BSDF element as a material and whether it is two-sided.
-    fn bsdf(&mut self, el: &'a Element) -> Result<(Material, bool), XmlError> {
+    /// A reflectance: a constant, or a bitmap texture (nested or by ref).
+    fn reflectance(
+        &mut self,
+        p: &Props<'a>,
+        name: &str,
+        default: Spectrum,
+    ) -> Result<(Spectrum, Option<Texture>), XmlError> {
+        match p.texture(name) {
+            Some(t) => {
+                let t = self.resolve(t)?;
+                if t.tag != "texture" {
+                    return Err(t.error(format!("\"{name}\" must be a texture or a colour")));
+                }
+                Ok((Spectrum::ONE, Some(load_bitmap(t, self.warnings)?)))
+            }
+            None => Ok((p.spectrum(name, default)?, None)),
+        }
+    }
+
+    /// A BSDF element as a material, whether it is two-sided, and its reflectance
+    /// texture.
+    fn bsdf(&mut self, el: &'a Element) -> Result<(Material, bool, Option<Texture>), XmlError> {
         let ty = el.required("type")?;
         let p = Props::new(el)?;
         let result = match ty {
-            "diffuse" => (
-                Material::Diffuse(Diffuse {
-                    reflectance: p.spectrum("reflectance", Spectrum::splat(0.5))?,
-                }),
-                false,
-            ),
+            "diffuse" => {
+                let (reflectance, texture) =
+                    self.reflectance(&p, "reflectance", Spectrum::splat(0.5))?;
+                (Material::Diffuse(Diffuse { reflectance }), false, texture)
+            }
             // Mitsuba 0.6's modified Phong; the same model as ours.
             "phong" => {
                 let exponent = p.float("exponent", 30.0)?;
                 if exponent < 0.0 {
                     return Err(el.error(format!("exponent must be ≥ 0, not {exponent}")));
                 }
+                let (kd, texture) =
+                    self.reflectance(&p, "diffuse_reflectance", Spectrum::splat(0.5))?;
                 (
                     Material::Phong(Phong {
-                        kd: p.spectrum("diffuse_reflectance", Spectrum::splat(0.5))?,
+                        kd,
                         ks: p.spectrum("specular_reflectance", Spectrum::splat(0.2))?,
                         exponent,
                     }),
                     false,
+                    texture,
                 )
             }
             "twosided" => {
@@ -119,7 +146,10 @@ impl<'a> Context<'a> {
                     .map(|c| self.resolve(c))
                     .collect::<Result<_, _>>()?;
                 match inner.as_slice() {
-                    [b] if b.tag == "bsdf" => (self.bsdf(b)?.0, true),
+                    [b] if b.tag == "bsdf" => {
+                        let (m, _, t) = self.bsdf(b)?;
+                        (m, true, t)
+                    }
                     [_, _] => {
                         return Err(el.error(
                             "a different BSDF on each side is not supported (give one BSDF)",

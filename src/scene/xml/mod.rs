@@ -4,6 +4,7 @@
 //! turns plugins into a [`Scene`] through the [`SceneBuilder`](super::SceneBuilder), and
 //! `shapes` builds the geometry. Every error names the file, line, column and element.
 
+mod bitmap;
 mod build;
 mod props;
 mod shapes;

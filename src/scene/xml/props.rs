@@ -181,7 +181,7 @@ impl<'a> Props<'a> {
         uniform_white: Spectrum,
     ) -> Result<Spectrum, XmlError> {
         if let Some(t) = self.object_named("texture", name) {
-            return Err(t.error("textures are not supported yet (only constant colours)"));
+            return Err(t.error(format!("\"{name}\" cannot be a texture here")));
         }
         let Some(c) = self.find(name) else {
             return Ok(default);
@@ -253,6 +253,12 @@ impl<'a> Props<'a> {
             }
         }
         out
+    }
+
+    /// A nested `<texture name=...>` or a `<ref name=... id=...>`, marked used.
+    pub fn texture(&self, name: &str) -> Option<&'a Element> {
+        self.object_named("texture", name)
+            .or_else(|| self.object_named("ref", name))
     }
 
     fn object_named(&self, tag: &str, name: &str) -> Option<&'a Element> {

@@ -149,7 +149,13 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
                 // Mitsuba 3 smooths meshes that come without normals.
                 mesh_io::compute_vertex_normals(&mut mesh);
             }
-            p.ignore("flip_tex_coords");
+            // Mitsuba flips OBJ texture coordinates by default (v → 1 − v), so that
+            // v = 0 is the image's top row.
+            if ty == "obj" && p.bool("flip_tex_coords", true)? {
+                for uv in mesh.uvs.iter_mut() {
+                    uv.y = 1.0 - uv.y;
+                }
+            }
             let mesh = transform_mesh(mesh, to_world, flip);
             ctx.builder.mesh(mesh, material, emission);
         }
