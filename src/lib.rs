@@ -7,7 +7,7 @@
 //! | [`sampling`] | warps, tabulated distributions, samplers, random streams, chi-square tests |
 //! | [`geometry`] | rays, boxes, shapes, meshes, hit records and the wide BVH |
 //! | [`bsdf`] | the `Bsdf` trait (uniform default sampling), Lambertian, modified Phong |
-//! | [`light`] | area and point lights, area/solid-angle conversion, light selection |
+//! | [`light`] | area and point lights, area/solid-angle conversion, light bounds, light selection (uniform, power, adaptive, BVH) |
 //! | [`integrator`] | direct-lighting estimators (hemisphere, rejection, cosine, bsdf, light) |
 //! | [`render`] | camera, render settings, parallel tile loop |
 //! | [`image`] | film (Welford statistics), EXR/PNG/PFM io, error metrics |

@@ -28,7 +28,7 @@ pub struct StrategyArgs {
     /// Area-light sampling strategy: area.
     #[arg(long)]
     pub light_sampling: Option<LightSampling>,
-    /// Light selection among many lights: uniform.
+    /// Light selection among many lights: uniform, power, adaptive, bvh (default).
     #[arg(long)]
     pub light_select: Option<LightSelect>,
     /// Sampler: independent, stratified, sobol.

@@ -198,18 +198,42 @@ fn write_exr(film: &Film, path: &Path) -> Result<(), ImageError> {
     })
 }
 
-/// Reads an image: EXR (R, G, B, optional variance.R/G/B and spp), PFM, or PNG
+/// Reads an image: EXR (R, G, B, optional variance.R/G/B and spp), Radiance HDR, PFM, or PNG
 /// (sRGB decoded to linear).
 pub fn read_image(path: &Path) -> Result<LoadedImage, ImageError> {
     match extension(path).as_str() {
         "exr" => read_exr(path),
         "pfm" => read_pfm(path),
         "png" => read_png(path),
+        "hdr" => read_hdr(path),
         other => Err(image_error(
             path,
-            format!("unknown image format \".{other}\" (known: .exr, .pfm, .png)"),
+            format!("unknown image format \".{other}\" (known: .exr, .hdr, .pfm, .png)"),
         )),
     }
+}
+
+/// Radiance RGBE (`.hdr`), linear.
+fn read_hdr(path: &Path) -> Result<LoadedImage, ImageError> {
+    let img = image::ImageReader::open(path)
+        .map_err(|e| image_error(path, e))?
+        .with_guessed_format()
+        .map_err(|e| image_error(path, e))?
+        .decode()
+        .map_err(|e| image_error(path, e))?
+        .into_rgb32f();
+    let (w, h) = img.dimensions();
+    let rgb = img
+        .pixels()
+        .map(|p| Spectrum::new(p.0[0], p.0[1], p.0[2]))
+        .collect();
+    Ok(LoadedImage {
+        width: w,
+        height: h,
+        rgb,
+        variance: None,
+        spp: None,
+    })
 }
 
 fn read_exr(path: &Path) -> Result<LoadedImage, ImageError> {

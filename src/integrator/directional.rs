@@ -53,6 +53,6 @@ pub(super) fn estimate(
     let ray = Ray::new(offset_origin(hit.p, hit.ng, w_world), w_world);
     match scene.geometry.intersect(&ray, f32::INFINITY) {
         Some(y) => weight * emitted_at(scene, &y, -w_world),
-        None => Spectrum::ZERO,
+        None => weight * scene.escaped(w_world),
     }
 }

@@ -39,7 +39,8 @@ pub(super) fn estimate(
     if f == Spectrum::ZERO {
         return Spectrum::ZERO;
     }
-    let occluded = if ls.delta {
+    // Point lights and lights at infinity have no surface point to aim a segment at.
+    let occluded = if ls.delta || ls.distance.is_infinite() {
         scene
             .geometry
             .direction_occluded(hit.p, hit.ng, ls.w_in, ls.distance)

@@ -52,10 +52,9 @@ pub struct Estimator {
 impl Estimator {
     /// The estimator `kind` for `scene`, choosing lights with `select`.
     pub fn new(scene: &Scene, kind: EstimatorKind, select: LightSelect) -> Estimator {
-        let powers: Vec<f32> = scene.lights.iter().map(|l| l.power()).collect();
         Estimator {
             kind,
-            selector: Selector::new(select, &powers),
+            selector: Selector::new(select, &scene.lights),
             mis: MisSettings::default(),
         }
     }
@@ -70,7 +69,7 @@ impl Estimator {
     /// illumination at the first hit.
     pub fn radiance(&self, scene: &Scene, ray: &Ray, src: &mut impl Uniform) -> Spectrum {
         let Some(hit) = scene.geometry.intersect(ray, f32::INFINITY) else {
-            return Spectrum::ZERO;
+            return scene.escaped(ray.d.normalize()); // the background: the environment
         };
         let w_out = -ray.d.normalize();
         emitted_at(scene, &hit, w_out) + self.direct(scene, &hit, w_out, src)

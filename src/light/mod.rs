@@ -3,10 +3,16 @@
 //! and densities at a shading point.
 
 mod area;
+mod bounds;
+pub mod cone;
+pub mod environment;
+mod estimate;
 mod point;
 pub mod select;
 
 pub use area::{AreaLight, LightSampling};
+pub use bounds::LightBounds;
+pub use environment::Environment;
 pub use point::PointLight;
 
 use glam::{Vec2, Vec3};
@@ -63,6 +69,8 @@ pub enum Light {
     Area(AreaLight),
     /// A point light.
     Point(PointLight),
+    /// Light from infinitely far away: an environment map or a constant.
+    Environment(Environment),
 }
 
 impl Light {
@@ -73,7 +81,46 @@ impl Light {
         match self {
             Light::Area(l) => l.sample(at, u),
             Light::Point(l) => l.sample(at),
+            Light::Environment(e) => {
+                let (w_in, radiance, pdf) = e.sample(u)?;
+                // Horizon rejection before the shadow ray, as for area lights.
+                (at.n.dot(w_in) > 0.0 && at.ng.dot(w_in) > 0.0).then_some(LightSample {
+                    w_in,
+                    distance: f32::INFINITY,
+                    radiance,
+                    pdf,
+                    delta: false,
+                    point: at.p + w_in,
+                    normal: -w_in,
+                })
+            }
         }
+    }
+
+    /// For a light at infinity: density per steradian of sampling direction `w` (unit,
+    /// towards the light). Zero for other lights, which a direction alone cannot name.
+    #[inline]
+    pub fn infinite_pdf(&self, w: Vec3) -> f32 {
+        match self {
+            Light::Environment(e) => e.pdf(w),
+            _ => 0.0,
+        }
+    }
+
+    /// For a light at infinity: radiance arriving from direction `w` (a ray that escapes
+    /// the scene along `w`). Zero for other lights.
+    #[inline]
+    pub fn infinite_radiance(&self, w: Vec3) -> Spectrum {
+        match self {
+            Light::Environment(e) => e.eval(w),
+            _ => Spectrum::ZERO,
+        }
+    }
+
+    /// True for lights at infinity (no point to aim a shadow segment at).
+    #[inline]
+    pub fn is_infinite(&self) -> bool {
+        matches!(self, Light::Environment(_))
     }
 
     /// Density per steradian at `at` of sampling the direction towards `y` (a point on
@@ -83,6 +130,7 @@ impl Light {
         match self {
             Light::Area(l) => l.pdf(at, y, ny),
             Light::Point(_) => 0.0,
+            Light::Environment(e) => e.pdf((y - at.p).normalize()),
         }
     }
 
@@ -91,7 +139,7 @@ impl Light {
     pub fn emitted(&self, ny: Vec3, w: Vec3) -> Spectrum {
         match self {
             Light::Area(l) => l.emitted(ny, w),
-            Light::Point(_) => Spectrum::ZERO,
+            Light::Point(_) | Light::Environment(_) => Spectrum::ZERO,
         }
     }
 
@@ -100,6 +148,7 @@ impl Light {
         match self {
             Light::Area(l) => l.power(),
             Light::Point(l) => l.power(),
+            Light::Environment(e) => e.power(),
         }
     }
 

@@ -86,16 +86,16 @@ pub struct RenderSettings {
 
 impl RenderSettings {
     /// The defaults for `scene`: MIS (one light and one BSDF sample, power heuristic) with
-    /// uniform-area light sampling, uniform selection and the Sobol sampler at the scene's
-    /// spp, and the one-pixel box filter; a scene file's requests (filter, sampler, seed,
-    /// MIS sample counts) replace these.
+    /// uniform-area light sampling, light-BVH selection and the Sobol sampler at the
+    /// scene's spp, and the one-pixel box filter; a scene file's requests (filter, sampler,
+    /// seed, MIS sample counts) replace these.
     pub fn for_scene(scene: &Scene) -> RenderSettings {
         let asked = &scene.requested;
         RenderSettings {
             estimator: EstimatorKind::Mis,
             mis: asked.mis.unwrap_or_default(),
             light_sampling: LightSampling::Area,
-            light_select: LightSelect::Uniform,
+            light_select: LightSelect::Bvh,
             sampler: asked.sampler.unwrap_or(SamplerKind::Sobol),
             spp: scene.spp,
             seed: asked.seed.unwrap_or(0),

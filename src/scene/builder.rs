@@ -7,7 +7,7 @@ use super::{Requested, Scene, SceneError};
 use crate::bsdf::Material;
 use crate::geometry::shape::{Disk, Rectangle, Sphere, Triangle};
 use crate::geometry::{Geometry, Mesh, NO_LIGHT, Primitive, Shape};
-use crate::light::{AreaLight, Light, LightSampling, PointLight};
+use crate::light::{AreaLight, Environment, Light, LightSampling, PointLight};
 use crate::math::Spectrum;
 use crate::render::camera::Camera;
 
@@ -194,6 +194,12 @@ impl SceneBuilder {
         self
     }
 
+    /// Adds an environment (at most one per scene).
+    pub fn environment(&mut self, env: Environment) -> &mut Self {
+        self.lights.push(Light::Environment(env));
+        self
+    }
+
     /// Validates and builds the scene (this builds the BVH).
     pub fn build(self, camera: Camera, spp: u32) -> Result<Scene, SceneError> {
         let err = |m: String| SceneError::new(self.name.clone(), None, m);
@@ -214,12 +220,29 @@ impl SceneBuilder {
             }
         }
         let geometry = Geometry::new(self.prims, self.meshes);
+        let mut lights = self.lights;
+        let mut environments = lights.iter().enumerate().filter(|(_, l)| l.is_infinite());
+        let environment = environments.next().map(|(i, _)| i);
+        if environments.next().is_some() {
+            return Err(err(
+                "a scene can have at most one environment emitter".into()
+            ));
+        }
+        if let Some(i) = environment
+            && let Light::Environment(e) = &mut lights[i]
+        {
+            // Φ = π r² ∫L dω needs the radius of a sphere around the scene.
+            let b = geometry.bounds();
+            let r = 0.5 * (b.max - b.min).length();
+            e.scene_radius = if r.is_finite() && r > 0.0 { r } else { 1.0 };
+        }
         Ok(Scene {
             name: self.name,
             camera,
             geometry,
             materials: self.materials,
-            lights: self.lights,
+            lights,
+            environment,
             spp,
             two_sided: self.two_sided,
             requested: Requested::default(),

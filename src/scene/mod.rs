@@ -33,6 +33,8 @@ pub struct Scene {
     pub materials: Vec<Material>,
     /// Lights, indexed by primitives that emit.
     pub lights: Vec<Light>,
+    /// Index in `lights` of the environment (light at infinity), if any.
+    pub environment: Option<usize>,
     /// Default samples per pixel.
     pub spp: u32,
     /// Materials that reflect from both sides (Mitsuba's `twosided`), by material index;
@@ -59,6 +61,16 @@ pub struct Requested {
 }
 
 impl Scene {
+    /// Radiance arriving along a ray that leaves the scene in direction `w` (unit): the
+    /// environment's, or zero.
+    #[inline]
+    pub fn escaped(&self, w: glam::Vec3) -> crate::math::Spectrum {
+        match self.environment {
+            Some(i) => self.lights[i].infinite_radiance(w),
+            None => crate::math::Spectrum::ZERO,
+        }
+    }
+
     /// The texture on material `m`'s reflectance, if any.
     #[inline]
     pub fn texture(&self, m: u32) -> Option<&MaterialTexture> {

@@ -127,15 +127,17 @@ fn light_sample(
         return Spectrum::ZERO;
     }
     let geometry = &ctx.scene.geometry;
+    let occluded = if ls.delta || ls.distance.is_infinite() {
+        geometry.direction_occluded(ctx.hit.p, ctx.hit.ng, ls.w_in, ls.distance)
+    } else {
+        geometry.segment_occluded(ctx.hit.p, ctx.hit.ng, ls.point, ls.normal)
+    };
+    if occluded {
+        return Spectrum::ZERO;
+    }
     let factor = if ls.delta {
-        if geometry.direction_occluded(ctx.hit.p, ctx.hit.ng, ls.w_in, ls.distance) {
-            return Spectrum::ZERO;
-        }
         delta_scale / (ls.pdf * sel.pmf)
     } else {
-        if geometry.segment_occluded(ctx.hit.p, ctx.hit.ng, ls.point, ls.normal) {
-            return Spectrum::ZERO;
-        }
         let p_light = sel.pmf * ls.pdf;
         let p_bsdf = ctx.material.pdf(w_in, ctx.w_out);
         scale(p_light, p_bsdf)
@@ -159,13 +161,33 @@ fn bsdf_sample(
     }
     let w_world = ctx.hit.frame.to_world(s.w_in);
     let ray = Ray::new(offset_origin(ctx.hit.p, ctx.hit.ng, w_world), w_world);
-    let Some(y) = ctx.scene.geometry.intersect(&ray, f32::INFINITY) else {
-        return Spectrum::ZERO;
+    // The emitter the ray reaches (a surface light, or the environment if it escapes),
+    // its radiance, and the light strategy's density for this direction.
+    let scene = ctx.scene;
+    let (index, le, pdf_light) = match scene.geometry.intersect(&ray, f32::INFINITY) {
+        Some(y) if y.light != NO_LIGHT => {
+            let i = y.light as usize;
+            let le = emitted_at(scene, &y, -w_world);
+            let pdf = if s.delta {
+                0.0
+            } else {
+                scene.lights[i].pdf(ctx.at, y.p, y.ng)
+            };
+            (i, le, pdf)
+        }
+        Some(_) => return Spectrum::ZERO,
+        None => match scene.environment {
+            Some(i) => {
+                let light = &scene.lights[i];
+                (
+                    i,
+                    light.infinite_radiance(w_world),
+                    light.infinite_pdf(w_world),
+                )
+            }
+            None => return Spectrum::ZERO,
+        },
     };
-    if y.light == NO_LIGHT {
-        return Spectrum::ZERO;
-    }
-    let le = emitted_at(ctx.scene, &y, -w_world);
     if le == Spectrum::ZERO {
         return Spectrum::ZERO;
     }
@@ -173,9 +195,7 @@ fn bsdf_sample(
     let factor = if s.delta {
         delta_scale / s.pdf
     } else {
-        let index = y.light as usize;
-        let p_light =
-            ctx.selector.pmf(ctx.at, index) * ctx.scene.lights[index].pdf(ctx.at, y.p, y.ng);
+        let p_light = ctx.selector.pmf(ctx.at, index) * pdf_light;
         scale(s.pdf, p_light)
     };
     f * le * factor

@@ -1,12 +1,23 @@
 //! Choosing one light among many (lecture: "we can unite all light sources to a single
 //! large one"): a selector draws a light with a probability and hands back the random
 //! number rescaled, so the same number can be used again.
+//!
+//! Four selectors: `uniform` (solution #1), `power` (solution #2), `adaptive` (solution
+//! #3, O(n) per point, the reference) and `bvh` (a light tree after Conty Estevez &
+//! Kulla 2018, O(log n)). Each `pmf` returns exactly the probability `select` used, so
+//! MIS can weight BSDF-sampled hits with it.
 
+mod adaptive;
+mod bvh;
+mod power;
 mod uniform;
 
+pub use adaptive::{ADAPTIVE_FLOOR, AdaptiveSelector};
+pub use bvh::BvhSelector;
+pub use power::PowerSelector;
 pub use uniform::UniformSelector;
 
-use super::ShadingPoint;
+use super::{Light, ShadingPoint};
 
 /// A chosen light, its probability, and `u` rescaled to [0, 1) so it can be used again.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -32,6 +43,13 @@ named_enum! {
     pub enum LightSelect: "light selection" {
         /// i = ⌊ξ·n⌋ (lecture solution #1).
         Uniform => "uniform",
+        /// ∝ emitted power Φ, by an alias table (lecture solution #2).
+        Power => "power",
+        /// ∝ a per-point contribution estimate with a floor, O(n) (lecture solution #3).
+        Adaptive => "adaptive",
+        /// A light BVH with importance from distance and orientation bounds, O(log n)
+        /// (Conty Estevez & Kulla 2018).
+        Bvh => "bvh",
     }
 }
 
@@ -40,13 +58,25 @@ named_enum! {
 pub enum Selector {
     /// Uniform choice.
     Uniform(UniformSelector),
+    /// By power.
+    Power(PowerSelector),
+    /// Per-point adaptive.
+    Adaptive(AdaptiveSelector),
+    /// Light BVH.
+    Bvh(BvhSelector),
 }
 
 impl Selector {
-    /// Builds the selector `kind` over lights with the given powers.
-    pub fn new(kind: LightSelect, powers: &[f32]) -> Selector {
+    /// Builds the selector `kind` over the scene's `lights` (indices into that slice).
+    pub fn new(kind: LightSelect, lights: &[Light]) -> Selector {
         match kind {
-            LightSelect::Uniform => Selector::Uniform(UniformSelector::new(powers.len())),
+            LightSelect::Uniform => Selector::Uniform(UniformSelector::new(lights.len())),
+            LightSelect::Power => {
+                let powers: Vec<f32> = lights.iter().map(|l| l.power()).collect();
+                Selector::Power(PowerSelector::new(&powers))
+            }
+            LightSelect::Adaptive => Selector::Adaptive(AdaptiveSelector::new(lights)),
+            LightSelect::Bvh => Selector::Bvh(BvhSelector::new(lights)),
         }
     }
 }
@@ -56,6 +86,9 @@ impl LightSelector for Selector {
     fn select(&self, at: &ShadingPoint, u: f32) -> Option<Selection> {
         match self {
             Selector::Uniform(s) => s.select(at, u),
+            Selector::Power(s) => s.select(at, u),
+            Selector::Adaptive(s) => s.select(at, u),
+            Selector::Bvh(s) => s.select(at, u),
         }
     }
 
@@ -63,6 +96,78 @@ impl LightSelector for Selector {
     fn pmf(&self, at: &ShadingPoint, index: usize) -> f32 {
         match self {
             Selector::Uniform(s) => s.pmf(at, index),
+            Selector::Power(s) => s.pmf(at, index),
+            Selector::Adaptive(s) => s.pmf(at, index),
+            Selector::Bvh(s) => s.pmf(at, index),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+
+    use super::*;
+    use crate::geometry::Shape;
+    use crate::geometry::shape::Sphere;
+    use crate::light::{AreaLight, LightSampling};
+    use crate::math::Spectrum;
+
+    fn sphere(x: f32, radiance: f32) -> Light {
+        Light::Area(AreaLight {
+            shape: Shape::Sphere(Sphere {
+                center: Vec3::new(x, 2.0, 0.0),
+                radius: 0.3,
+            }),
+            radiance: Spectrum::splat(radiance),
+            two_sided: false,
+            sampling: LightSampling::Area,
+        })
+    }
+
+    const AT: ShadingPoint = ShadingPoint {
+        p: Vec3::ZERO,
+        ng: Vec3::Y,
+        n: Vec3::Y,
+    };
+
+    #[test]
+    fn no_lights_select_nothing() {
+        for kind in LightSelect::ALL {
+            let s = Selector::new(kind, &[]);
+            assert!(s.select(&AT, 0.5).is_none(), "{kind}");
+            assert_eq!(s.pmf(&AT, 0), 0.0, "{kind}");
+        }
+    }
+
+    #[test]
+    fn one_light_is_chosen_with_probability_one() {
+        let lights = [sphere(0.0, 1.0)];
+        for kind in LightSelect::ALL {
+            let s = Selector::new(kind, &lights);
+            for u in [0.0, 0.5, 0.999_999_9] {
+                let sel = s.select(&AT, u).expect("a light");
+                assert_eq!((sel.index, sel.pmf), (0, 1.0), "{kind}");
+                assert!((0.0..1.0).contains(&sel.u_reused), "{kind}");
+            }
+            assert_eq!(s.pmf(&AT, 1), 0.0, "{kind}: out of range");
+        }
+    }
+
+    #[test]
+    fn dark_lights_are_never_chosen_by_informed_selectors() {
+        let lights: Vec<Light> = (0..7)
+            .map(|i| sphere(i as f32 - 3.0, if i == 2 { 0.0 } else { 1.0 + i as f32 }))
+            .collect();
+        for kind in [LightSelect::Power, LightSelect::Adaptive, LightSelect::Bvh] {
+            let s = Selector::new(kind, &lights);
+            assert_eq!(s.pmf(&AT, 2), 0.0, "{kind}");
+            for k in 0..1000 {
+                let sel = s.select(&AT, k as f32 / 1000.0).expect("a light");
+                assert_ne!(sel.index, 2, "{kind}");
+            }
+        }
+        let bvh = BvhSelector::new(&lights);
+        assert_eq!(bvh.node_count(), 2 * 6 - 1);
     }
 }

@@ -1,6 +1,8 @@
 //! Built-in scenes: each is a figure the lecture draws, so students can reproduce it.
 
 mod assignment;
+mod envmap;
+pub mod shirley100;
 mod veach_mis;
 
 use super::{Scene, SceneError};
@@ -27,13 +29,31 @@ pub const BUILTINS: &[Builtin] = &[
         description: "Veach's four plates of rising gloss (Phong n = 30 … 30000) and four equal-power sphere lights: light vs BSDF sampling vs MIS",
         build: veach_mis::build,
     },
+    Builtin {
+        name: "envmap",
+        description: "diffuse and glossy spheres under a procedural sky with a small, very bright sun: environment-map sampling",
+        build: envmap::build,
+    },
+    Builtin {
+        name: "shirley-100",
+        description: "a hundred luminaires (spheres and quads, radiances over two decades) over a floor with objects: light selection",
+        build: shirley100::build,
+    },
+    Builtin {
+        name: "many-lights",
+        description: "the shirley-100 generator with N luminaires: many-lights?n=N, 1 ≤ N ≤ 10⁶ (default 1000)",
+        build: shirley100::build_default_many,
+    },
 ];
 
 /// The scene `render` draws when none is given.
 pub const DEFAULT_SCENE: &str = "builtin:assignment";
 
-/// Builds the built-in scene `name`.
+/// Builds the built-in scene `name`; `many-lights?n=N` takes the luminaire count.
 pub fn build(name: &str) -> Result<Scene, SceneError> {
+    if let Some((base, query)) = name.split_once('?') {
+        return build_with_query(name, base, query);
+    }
     match BUILTINS.iter().find(|b| b.name == name) {
         Some(b) => (b.build)(),
         None => {
@@ -43,6 +63,51 @@ pub fn build(name: &str) -> Result<Scene, SceneError> {
                 None,
                 format!("unknown built-in scene (known: {})", known.join(", ")),
             ))
+        }
+    }
+}
+
+/// `NAME?key=value`: only `many-lights?n=N` takes a parameter.
+fn build_with_query(spec: &str, base: &str, query: &str) -> Result<Scene, SceneError> {
+    let err = |m: String| SceneError::new(format!("builtin:{spec}"), None, m);
+    if base != "many-lights" {
+        return Err(err(format!(
+            "built-in scene \"{base}\" takes no parameters (only many-lights?n=N does)"
+        )));
+    }
+    let Some(value) = query.strip_prefix("n=") else {
+        return Err(err(format!(
+            "unknown parameter \"{query}\": expected n=N, e.g. many-lights?n=10000"
+        )));
+    };
+    let n: usize = value.trim().parse().map_err(|_| {
+        err(format!(
+            "n = \"{value}\" is not a whole number (1 ≤ n ≤ {})",
+            shirley100::MAX_LUMINAIRES
+        ))
+    })?;
+    shirley100::build_many(n)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn many_lights_takes_its_count_and_rejects_bad_ones() {
+        let scene = build("many-lights?n=250").expect("scene");
+        assert_eq!(scene.lights.len(), 250);
+        assert_eq!(build("shirley-100").expect("scene").lights.len(), 100);
+        for bad in [
+            "many-lights?n=0",
+            "many-lights?n=-3",
+            "many-lights?n=x",
+            "many-lights?n=2000000",
+            "many-lights?m=3",
+            "assignment?n=3",
+        ] {
+            let e = build(bad).expect_err(bad);
+            assert!(e.to_string().contains("many-lights") || e.to_string().contains("n"));
         }
     }
 }

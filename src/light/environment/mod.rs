@@ -1,0 +1,321 @@
+//! Environment emitters: radiance arriving from infinitely far away, from a latitude–
+//! longitude (equirectangular) HDR image or a constant.
+//!
+//! Conventions follow Mitsuba 3's `envmap`: in the emitter's local frame +y is up; the
+//! direction ω = (sin θ sin φ, cos θ, −sin θ cos φ) has image coordinates u = φ/2π,
+//! v = θ/π; texel (i, j) of a W×H image sits at (u, v) = (i/W, j/(H−1)) — the first column
+//! repeats after the last — and radiance is interpolated bilinearly between texels.
+//!
+//! Sampling (pbrt-v4 §12.5; Mitsuba 3 `envmap`): a piecewise-constant 2D distribution over
+//! the W×(H−1) cells between texels, each weighted by the exact mean of the bilinear
+//! luminance over the cell (the mean of its four corners) times the mean of sin θ over its
+//! row, so every direction with radiance has a positive density. A point (u, v) of density
+//! p(u, v) becomes a direction of density p(u, v)/(2π² sin θ) (Jacobian of the map).
+
+mod sky;
+
+pub use sky::{SkyParameters, procedural_sky};
+
+use glam::{Mat3, Vec2, Vec3};
+
+use crate::math::{PI, Spectrum, spectrum::luminance};
+use crate::sampling::distribution::PiecewiseConstant2D;
+use crate::sampling::sampler::ONE_MINUS_EPSILON;
+use crate::sampling::warp::{square_to_uniform_sphere, uniform_sphere_pdf};
+
+/// A radiance image in latitude–longitude layout, rows from the top (θ = 0).
+#[derive(Clone, Debug)]
+pub struct LatLongImage {
+    /// Width W (along φ).
+    pub width: usize,
+    /// Height H (along θ).
+    pub height: usize,
+    /// Row-major RGB radiance, W·H values.
+    pub texels: Vec<Spectrum>,
+}
+
+#[derive(Clone, Debug)]
+enum Radiance {
+    Constant(Spectrum),
+    Map {
+        image: LatLongImage,
+        distribution: PiecewiseConstant2D,
+    },
+}
+
+/// An environment emitter.
+#[derive(Clone, Debug)]
+pub struct Environment {
+    radiance: Radiance,
+    /// Multiplies the radiance (Mitsuba's `scale`).
+    scale: f32,
+    /// Rotation from the emitter's frame to the world.
+    to_world: Mat3,
+    to_local: Mat3,
+    /// ∫ L dω over the sphere (luminance, scale included), for the power estimate.
+    integral: f32,
+    /// Radius of a sphere bounding the scene, for Φ = π r² ∫ L dω.
+    pub scene_radius: f32,
+}
+
+/// Direction in the emitter's frame of image coordinates (u, v) ∈ [0, 1]², and sin θ.
+#[inline]
+fn uv_to_direction(uv: Vec2) -> (Vec3, f32) {
+    let (sin_t, cos_t) = (PI * uv.y).sin_cos();
+    let (sin_p, cos_p) = (2.0 * PI * uv.x).sin_cos();
+    (Vec3::new(sin_t * sin_p, cos_t, -sin_t * cos_p), sin_t)
+}
+
+/// Image coordinates of a unit direction in the emitter's frame (inverse of
+/// [`uv_to_direction`]), u wrapped into [0, 1).
+#[inline]
+fn direction_to_uv(w: Vec3) -> Vec2 {
+    let u = w.x.atan2(-w.z) * (0.5 / PI);
+    // θ by atan2 stays accurate at the poles, where acos(y) loses every digit.
+    let v = (w.x * w.x + w.z * w.z).sqrt().atan2(w.y) / PI;
+    Vec2::new(u - u.floor(), v.min(ONE_MINUS_EPSILON))
+}
+
+impl LatLongImage {
+    /// An image of `width × height` texels; negative and non-finite values are an error.
+    pub fn new(width: usize, height: usize, texels: Vec<Spectrum>) -> Result<Self, String> {
+        if width == 0 || height == 0 || texels.len() != width * height {
+            return Err(format!(
+                "environment image is {width}×{height} but has {} texels",
+                texels.len()
+            ));
+        }
+        if let Some(i) = texels
+            .iter()
+            .position(|t| !t.is_finite() || t.min_element() < 0.0)
+        {
+            return Err(format!(
+                "environment texel ({}, {}) is {} (radiance must be finite and ≥ 0)",
+                i % width,
+                i / width,
+                texels[i]
+            ));
+        }
+        // One row cannot be interpolated along θ: repeat it (a θ-independent map).
+        let (height, texels) = if height == 1 {
+            (2, [texels.clone(), texels].concat())
+        } else {
+            (height, texels)
+        };
+        Ok(LatLongImage {
+            width,
+            height,
+            texels,
+        })
+    }
+
+    #[inline]
+    fn texel(&self, i: usize, j: usize) -> Spectrum {
+        self.texels[j * self.width + i % self.width]
+    }
+
+    /// Bilinear radiance at (u, v) between texels at (i/W, j/(H−1)).
+    #[inline]
+    pub fn lookup(&self, uv: Vec2) -> Spectrum {
+        let x = uv.x * self.width as f32;
+        let y = (uv.y * (self.height - 1) as f32).clamp(0.0, (self.height - 1) as f32);
+        let (i, j) = (
+            x.floor().max(0.0) as usize,
+            (y.floor() as usize).min(self.height - 2),
+        );
+        let (fx, fy) = (x - i as f32, y - j as f32);
+        let top = self.texel(i, j) * (1.0 - fx) + self.texel(i + 1, j) * fx;
+        let bottom = self.texel(i, j + 1) * (1.0 - fx) + self.texel(i + 1, j + 1) * fx;
+        top * (1.0 - fy) + bottom * fy
+    }
+
+    /// Sampling weights of the W×(H−1) cells: mean luminance over the cell times the
+    /// mean of sin θ over its row; and ∫ L dω (luminance) over the sphere.
+    fn cell_weights(&self) -> (Vec<f32>, f32) {
+        let rows = self.height - 1;
+        let dtheta = PI / rows as f32;
+        let dphi = 2.0 * PI / self.width as f32;
+        let mut weights = Vec::with_capacity(self.width * rows);
+        let mut integral = 0.0f64;
+        for j in 0..rows {
+            let (t0, t1) = (j as f32 * dtheta, (j + 1) as f32 * dtheta);
+            let mean_sin = (t0.cos() - t1.cos()) / dtheta;
+            for i in 0..self.width {
+                let corners = self.texel(i, j)
+                    + self.texel(i + 1, j)
+                    + self.texel(i, j + 1)
+                    + self.texel(i + 1, j + 1);
+                let mean_l = 0.25 * luminance(corners).max(0.0);
+                let w = mean_l * mean_sin;
+                weights.push(w);
+                integral += (w * dtheta * dphi) as f64;
+            }
+        }
+        (weights, integral as f32)
+    }
+}
+
+impl Environment {
+    /// A constant environment of radiance `l` (Mitsuba's `constant`), sampled uniformly
+    /// over the sphere.
+    pub fn constant(l: Spectrum) -> Environment {
+        Environment {
+            radiance: Radiance::Constant(l),
+            scale: 1.0,
+            to_world: Mat3::IDENTITY,
+            to_local: Mat3::IDENTITY,
+            integral: 4.0 * PI * luminance(l),
+            scene_radius: 1.0,
+        }
+    }
+
+    /// An environment map from a lat-long image, scaled by `scale` and rotated by
+    /// `to_world` (its rotation part is used: directions only).
+    pub fn from_image(image: LatLongImage, scale: f32, to_world: Mat3) -> Result<Self, String> {
+        if !(scale.is_finite() && scale >= 0.0) {
+            return Err(format!(
+                "environment scale must be finite and ≥ 0, not {scale}"
+            ));
+        }
+        let rotation = orthonormalize(to_world)
+            .ok_or_else(|| "environment to_world has no rotation part (degenerate)".to_string())?;
+        let rows = image.height - 1;
+        let (weights, integral) = image.cell_weights();
+        let distribution = PiecewiseConstant2D::new(&weights, image.width, rows)
+            .map_err(|e| format!("environment sampling distribution: {e:?}"))?;
+        Ok(Environment {
+            radiance: Radiance::Map {
+                image,
+                distribution,
+            },
+            scale,
+            to_world: rotation,
+            to_local: rotation.transpose(),
+            integral: integral * scale,
+            scene_radius: 1.0,
+        })
+    }
+
+    /// An environment map from a lat-long image file (`.exr`, `.hdr`, `.pfm`, `.png`).
+    pub fn from_file(path: &std::path::Path, scale: f32, to_world: Mat3) -> Result<Self, String> {
+        let img = crate::image::io::read_image(path).map_err(|e| e.to_string())?;
+        let image = LatLongImage::new(img.width as usize, img.height as usize, img.rgb)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        Environment::from_image(image, scale, to_world)
+            .map_err(|e| format!("{}: {e}", path.display()))
+    }
+
+    /// Radiance arriving from world direction `w` (unit, pointing away from the scene).
+    #[inline]
+    pub fn eval(&self, w: Vec3) -> Spectrum {
+        match &self.radiance {
+            Radiance::Constant(l) => *l * self.scale,
+            Radiance::Map { image, .. } => {
+                image.lookup(direction_to_uv(self.to_local * w)) * self.scale
+            }
+        }
+    }
+
+    /// Draws a world direction; returns it with its radiance and solid-angle density.
+    #[inline]
+    pub fn sample(&self, u: Vec2) -> Option<(Vec3, Spectrum, f32)> {
+        match &self.radiance {
+            Radiance::Constant(l) => {
+                let (w, pdf) = square_to_uniform_sphere(u);
+                Some((w, *l * self.scale, pdf))
+            }
+            Radiance::Map { distribution, .. } => {
+                let (uv, pdf_uv) = distribution.sample(u);
+                let (local, sin_t) = uv_to_direction(uv);
+                if sin_t <= 0.0 || pdf_uv <= 0.0 {
+                    return None;
+                }
+                // Density and radiance are taken from the direction itself (not from the
+                // sampled uv), so a BSDF-sampled ray that finds this direction gets
+                // bit-identical values for its MIS weight.
+                let w = (self.to_world * local).normalize();
+                let pdf = self.pdf(w);
+                (pdf > 0.0).then(|| (w, self.eval(w), pdf))
+            }
+        }
+    }
+
+    /// Solid-angle density of [`Environment::sample`] choosing world direction `w`.
+    #[inline]
+    pub fn pdf(&self, w: Vec3) -> f32 {
+        match &self.radiance {
+            Radiance::Constant(_) => uniform_sphere_pdf(w),
+            Radiance::Map { distribution, .. } => {
+                let local = self.to_local * w;
+                // sin θ from the horizontal components: accurate near the poles.
+                let sin_t = (local.x * local.x + local.z * local.z).sqrt();
+                if sin_t <= 0.0 {
+                    return 0.0;
+                }
+                distribution.pdf(direction_to_uv(local)) / (2.0 * PI * PI * sin_t)
+            }
+        }
+    }
+
+    /// ∫ L dω over the sphere (luminance, scale included).
+    pub fn radiance_integral(&self) -> f32 {
+        self.integral
+    }
+
+    /// Power estimate Φ = π r² ∫ L dω (luminance) for a scene of bounding radius r: the
+    /// power the environment sends through a disk that covers the scene (pbrt-v4 §12.5).
+    pub fn power(&self) -> f32 {
+        PI * self.scene_radius * self.scene_radius * self.integral
+    }
+}
+
+/// The nearest rotation to `m` (Gram–Schmidt on its columns), or None if degenerate.
+fn orthonormalize(m: Mat3) -> Option<Mat3> {
+    let x = m.x_axis.try_normalize()?;
+    let y = (m.y_axis - x * x.dot(m.y_axis)).try_normalize()?;
+    let z = x.cross(y);
+    // Keep handedness: a mirrored to_world flips z.
+    let z = if z.dot(m.z_axis) < 0.0 { -z } else { z };
+    Some(Mat3::from_cols(x, y, z))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn uv_and_direction_are_inverse() {
+        for (u, v) in [(0.1, 0.2), (0.6, 0.5), (0.95, 0.9), (0.5, 0.01)] {
+            let (w, _) = uv_to_direction(Vec2::new(u, v));
+            let back = direction_to_uv(w);
+            assert!(
+                (back - Vec2::new(u, v)).abs().max_element() < 1e-5,
+                "{u} {v}: {back}"
+            );
+        }
+        // Mitsuba's convention: u = 0 looks down −z, +y is up.
+        assert!((uv_to_direction(Vec2::new(0.0, 0.5)).0 - Vec3::NEG_Z).length() < 1e-6);
+        assert!((uv_to_direction(Vec2::new(0.0, 0.0)).0 - Vec3::Y).length() < 1e-6);
+    }
+
+    #[test]
+    fn bilinear_lookup_hits_texels_and_wraps() {
+        let texels = (0..8).map(|i| Spectrum::splat(i as f32)).collect();
+        let img = LatLongImage::new(4, 2, texels).expect("image");
+        assert_eq!(img.lookup(Vec2::new(0.25, 0.0)), Spectrum::splat(1.0));
+        assert_eq!(img.lookup(Vec2::new(0.5, 1.0)), Spectrum::splat(6.0));
+        // Between the last column (3) and the first (0) of the top row.
+        assert_eq!(img.lookup(Vec2::new(0.875, 0.0)), Spectrum::splat(1.5));
+    }
+
+    #[test]
+    fn bad_images_are_errors() {
+        assert!(LatLongImage::new(2, 2, vec![Spectrum::ONE; 3]).is_err());
+        let mut t = vec![Spectrum::ONE; 4];
+        t[2] = Spectrum::splat(f32::NAN);
+        assert!(LatLongImage::new(2, 2, t).is_err());
+        let img = LatLongImage::new(2, 2, vec![Spectrum::ONE; 4]).expect("image");
+        assert!(Environment::from_image(img.clone(), -1.0, Mat3::IDENTITY).is_err());
+        assert!(Environment::from_image(img, 1.0, Mat3::ZERO).is_err());
+    }
+}

@@ -1,0 +1,167 @@
+//! Building the light BVH top-down with the surface area orientation heuristic (SAOH,
+//! Conty Estevez & Kulla 2018, §4.2; pbrt-v4 `BVHLightSampler::buildBVH`): split where
+//! Σ φ · M_Ω · K_r · area over both sides is least, one light per leaf.
+
+use glam::Vec3;
+
+use super::{Node, Trail};
+use crate::geometry::Aabb;
+use crate::light::LightBounds;
+use crate::math::PI;
+
+/// Centroid buckets per axis.
+const BUCKETS: usize = 12;
+
+/// Below this depth the SAOH chooses splits; deeper ranges are halved by count, so the
+/// depth stays under 64 (the bit trails' width) for any light count up to 2³¹.
+const SAOH_MAX_DEPTH: u32 = 32;
+
+/// A light entering the build: its index in the scene, bounds and centroid.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct BuildLight {
+    pub index: usize,
+    pub bounds: LightBounds,
+    pub centroid: Vec3,
+}
+
+/// The tree under construction.
+pub(super) struct Builder {
+    pub nodes: Vec<Node>,
+    pub trails: Vec<Trail>,
+}
+
+impl Builder {
+    /// Builds the subtree of `lights` (non-empty), placing its root at the next node
+    /// index and its first child right after it; returns the subtree's bounds.
+    pub fn build(&mut self, lights: &mut [BuildLight], trail: u64, depth: u32) -> LightBounds {
+        if lights.len() == 1 {
+            let l = lights[0];
+            self.trails[l.index] = Trail {
+                bits: trail,
+                depth: depth as u8,
+            };
+            self.nodes.push(Node {
+                bounds: l.bounds,
+                second_or_light: l.index as u32,
+                leaf: true,
+            });
+            return l.bounds;
+        }
+        let mid = split(lights, depth);
+        let at = self.nodes.len();
+        self.nodes.push(Node {
+            bounds: lights[0].bounds,
+            second_or_light: 0,
+            leaf: false,
+        });
+        let (left, right) = lights.split_at_mut(mid);
+        let a = self.build(left, trail, depth + 1);
+        let second = self.nodes.len() as u32;
+        let b = self.build(right, trail | (1u64 << depth), depth + 1);
+        self.nodes[at].bounds = a.union(&b);
+        self.nodes[at].second_or_light = second;
+        self.nodes[at].bounds
+    }
+}
+
+/// Partitions `lights` (≥ 2) and returns the index where the second part starts
+/// (strictly inside the slice).
+fn split(lights: &mut [BuildLight], depth: u32) -> usize {
+    let half = lights.len() / 2;
+    if depth >= SAOH_MAX_DEPTH {
+        return half;
+    }
+    let bounds = lights
+        .iter()
+        .fold(Aabb::EMPTY, |b, l| b.union(l.bounds.aabb));
+    let centroids = lights.iter().fold(Aabb::EMPTY, |b, l| b.grow(l.centroid));
+    let mut best: Option<(f32, usize, usize)> = None; // (cost, axis, first bucket above)
+    for axis in 0..3 {
+        let (lo, hi) = (centroids.min[axis], centroids.max[axis]);
+        if hi <= lo {
+            continue;
+        }
+        let mut buckets = [None::<LightBounds>; BUCKETS];
+        let mut counts = [0usize; BUCKETS];
+        for l in lights.iter() {
+            let b = bucket(l.centroid[axis], lo, hi);
+            counts[b] += 1;
+            buckets[b] = Some(match buckets[b] {
+                Some(x) => x.union(&l.bounds),
+                None => l.bounds,
+            });
+        }
+        for s in 1..BUCKETS {
+            let below = merge(&buckets[..s]);
+            let above = merge(&buckets[s..]);
+            let (n_below, n_above): (usize, usize) =
+                (counts[..s].iter().sum(), counts[s..].iter().sum());
+            if n_below == 0 || n_above == 0 {
+                continue;
+            }
+            let cost = below.map_or(0.0, |b| cost(&b, &bounds, axis))
+                + above.map_or(0.0, |b| cost(&b, &bounds, axis));
+            if cost.is_finite() && best.is_none_or(|(c, _, _)| cost < c) {
+                best = Some((cost, axis, s));
+            }
+        }
+    }
+    let Some((_, axis, s)) = best else {
+        return half;
+    };
+    let (lo, hi) = (centroids.min[axis], centroids.max[axis]);
+    let mut mid = 0;
+    for i in 0..lights.len() {
+        if bucket(lights[i].centroid[axis], lo, hi) < s {
+            lights.swap(i, mid);
+            mid += 1;
+        }
+    }
+    if mid == 0 || mid == lights.len() {
+        half
+    } else {
+        mid
+    }
+}
+
+/// Bucket of coordinate `x` in [lo, hi].
+fn bucket(x: f32, lo: f32, hi: f32) -> usize {
+    (((x - lo) / (hi - lo) * BUCKETS as f32) as usize).min(BUCKETS - 1)
+}
+
+/// The union of the non-empty buckets.
+fn merge(buckets: &[Option<LightBounds>]) -> Option<LightBounds> {
+    buckets.iter().flatten().fold(None, |acc, b| {
+        Some(match acc {
+            Some(a) => a.union(b),
+            None => *b,
+        })
+    })
+}
+
+/// SAOH cost of one side: φ · M_Ω · K_r · surface area, where M_Ω is the solid-angle
+/// measure of the normal cone widened by the emission angle,
+/// M_Ω = 2π(1 − cos θ_o) + π/2·(2θ_w sin θ_o − cos(θ_o − 2θ_w) − 2θ_o sin θ_o + cos θ_o)
+/// with θ_w = min(θ_o + θ_e, π) (Conty Estevez & Kulla 2018, eq. 1), and K_r the
+/// parent box's longest extent over its extent along the split axis (penalises thin
+/// slices).
+fn cost(b: &LightBounds, parent: &Aabb, axis: usize) -> f32 {
+    let theta_o = b.cos_theta_o.clamp(-1.0, 1.0).acos();
+    let theta_e = b.cos_theta_e.clamp(-1.0, 1.0).acos();
+    let theta_w = (theta_o + theta_e).min(PI);
+    let sin_o = theta_o.sin().max(0.0);
+    let m_omega = 2.0 * PI * (1.0 - b.cos_theta_o)
+        + 0.5
+            * PI
+            * (2.0 * theta_w * sin_o - (theta_o - 2.0 * theta_w).cos() - 2.0 * theta_o * sin_o
+                + b.cos_theta_o);
+    let extent = parent.extent();
+    let k_r = if extent[axis] > 0.0 {
+        extent.max_element() / extent[axis]
+    } else {
+        1.0
+    };
+    // A point light's box has no area: give it a tiny one so its power still counts.
+    let area = b.aabb.surface_area().max(1e-12);
+    b.phi * m_omega * k_r * area
+}
