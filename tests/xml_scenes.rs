@@ -7,8 +7,8 @@
 //! correlate neighbouring pixels, so per-pixel variances would understate it). Each
 //! block's Student t statistic (PASSES − 1 degrees of freedom) is tested two-sided at a
 //! Šidák-corrected 1% level over the blocks, as Mitsuba's own render tests do, and the
-//! image mean must be within 1% of the reference's. The reference's own noise
-//! (8192 spp) is ignored; it is about 3% of the test's variance.
+//! image mean must be within 1% of the reference's. The reference's own noise enters the
+//! standard error through the variance channels `make_refs.py` stores (from 8 passes).
 
 use std::path::PathBuf;
 
@@ -76,6 +76,16 @@ const CASES: &[(&str, &str, Option<&str>)] = &[
         None,
     ),
     (
+        "envmap_rotated",
+        "envmap (EXR, scale, to_world rotation), disk",
+        None,
+    ),
+    (
+        "constant_env",
+        "constant (uniform spectrum = illuminant E), bsdf_samples 3, gaussian on 48x48, stratified",
+        None,
+    ),
+    (
         "microfacet_conductor",
         "roughconductor (ggx, beckmann anisotropic), conductor",
         Some("roughconductor/conductor arrive with the bsdf branch"),
@@ -89,6 +99,26 @@ const CASES: &[(&str, &str, Option<&str>)] = &[
 
 fn dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/scenes")
+}
+
+/// Per-block variance of the mean of a reference from its per-pixel variances: channels
+/// taken as fully correlated (an upper bound), pixels as independent (exact for the box
+/// filter).
+fn block_variances(variance: &[Spectrum], w: u32, h: u32) -> Vec<f64> {
+    let per_pixel: Vec<Spectrum> = variance
+        .iter()
+        .map(|v| {
+            let sd = v.max(Spectrum::ZERO).to_array().map(f32::sqrt);
+            // Var((R + G + B)/3) with fully correlated channels.
+            Spectrum::splat(((sd[0] + sd[1] + sd[2]) / 3.0).powi(2))
+        })
+        .collect();
+    // The block mean of n independent pixels: Var = Σ var / n² = (mean var) / n.
+    let n = (BLOCK * BLOCK) as f64;
+    block_means(&per_pixel, w, h)
+        .into_iter()
+        .map(|v| v / n)
+        .collect()
 }
 
 /// Per-block means of one image.
@@ -132,6 +162,10 @@ fn check(name: &str) -> Result<String, String> {
         passes.push(block_means(&means, w, h));
     }
     let refs = block_means(&reference.rgb, w, h);
+    let ref_vars = match &reference.variance {
+        Some(v) => block_variances(v, w, h),
+        None => vec![0.0; refs.len()],
+    };
     let blocks = refs.len();
     let alpha = 1.0 - (1.0 - ALPHA).powf(1.0 / blocks as f64);
     let t = StudentsT::new(0.0, 1.0, (PASSES - 1) as f64).map_err(|e| e.to_string())?;
@@ -141,7 +175,8 @@ fn check(name: &str) -> Result<String, String> {
         let xs: Vec<f64> = passes.iter().map(|p| p[b]).collect();
         let mean = xs.iter().sum::<f64>() / n;
         let var = xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0);
-        let se = (var / n).sqrt();
+        // The test's standard error and the reference's own noise.
+        let se = (var / n + ref_vars[b]).sqrt();
         let diff = mean - refs[b];
         let p = if se > 0.0 {
             2.0 * (1.0 - t.cdf((diff / se).abs()))

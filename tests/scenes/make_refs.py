@@ -14,6 +14,9 @@ import sys
 
 import mitsuba as mi
 
+# Independent passes per reference (for its variance).
+PASSES = 8
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
@@ -32,10 +35,22 @@ def main():
         with open(path) as f:
             declares_spp = 'name="spp"' in f.read()
         scene = mi.load_file(path, spp=a.spp) if declares_spp else mi.load_file(path)
-        # Seed 0 for a reproducible reference.
-        image = mi.render(scene, spp=a.spp, seed=0)
+        # PASSES independent renders (seeds 0..PASSES-1): their mean is the reference and
+        # their spread the variance of that mean, stored per pixel so the test can add
+        # the reference's own noise to its error bars.
+        passes = [mi.TensorXf(mi.render(scene, spp=a.spp // PASSES, seed=k)) for k in range(PASSES)]
+        mean = sum(passes[1:], passes[0]) / PASSES
+        m2 = sum(((p - mean) * (p - mean) for p in passes[1:]), (passes[0] - mean) * (passes[0] - mean))
+        var = m2 / (PASSES * (PASSES - 1))
+        h, w, c = mean.shape
+        mv, vv = list(mean.array), list(var.array)
+        both = []
+        for i in range(h * w):
+            both += mv[i * c:i * c + 3] + vv[i * c:i * c + 3]
+        bitmap = mi.Bitmap(mi.TensorXf(both, (h, w, 6)), mi.Bitmap.PixelFormat.MultiChannel,
+                           channel_names=["R", "G", "B", "variance.R", "variance.G", "variance.B"])
         out = os.path.join(HERE, "refs", name + ".exr")
-        mi.Bitmap(image).convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32, srgb_gamma=False).write(out)
+        bitmap.write(out)
         print(f"{name}: {variant}, {a.spp} spp -> {out}", file=sys.stderr)
 
 

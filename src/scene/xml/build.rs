@@ -5,7 +5,7 @@
 use std::collections::HashMap;
 use std::path::Path;
 
-use glam::{Affine3A, Vec3};
+use glam::{Affine3A, Mat3, Vec3};
 
 use super::XmlError;
 use super::bitmap::load_bitmap;
@@ -15,6 +15,7 @@ use super::tree::Element;
 use crate::bsdf::{Diffuse, Material, Phong};
 use crate::image::Filter;
 use crate::integrator::{MisHeuristic, MisSettings};
+use crate::light::Environment;
 use crate::math::Spectrum;
 use crate::render::camera::Camera;
 use crate::sampling::SamplerKind;
@@ -37,6 +38,7 @@ pub struct Context<'a> {
     ids: HashMap<&'a str, &'a Element>,
     materials: HashMap<*const Element, u32>,
     default_material: Option<u32>,
+    has_environment: bool,
     /// The scene under construction.
     pub builder: SceneBuilder,
     /// Located warnings.
@@ -206,6 +208,7 @@ pub fn build(root: &Element, path: &Path, warnings: &mut Vec<String>) -> Result<
         ids,
         materials: HashMap::new(),
         default_material: None,
+        has_environment: false,
         builder: SceneBuilder::new(path.display().to_string()),
         warnings,
     };
@@ -440,7 +443,8 @@ fn build_integrator<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<MisSet
     Ok(mis)
 }
 
-/// A top-level `<emitter>`: `point` (`intensity`, `position` or `to_world`).
+/// A top-level `<emitter>`: `point` (`intensity`, `position` or `to_world`), `constant`
+/// (`radiance`) or `envmap` (`filename`, `scale`, `to_world`).
 fn build_emitter<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlError> {
     let ty = el.required("type")?;
     match ty {
@@ -457,10 +461,34 @@ fn build_emitter<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
             ctx.finish(&p);
             Ok(())
         }
+        "constant" | "envmap" => {
+            if ctx.has_environment {
+                return Err(el.error("a scene takes one environment (constant or envmap)"));
+            }
+            let p = Props::new(el)?;
+            let env = if ty == "constant" {
+                Environment::constant(p.emission("radiance", Spectrum::ONE)?)
+            } else {
+                let file = p.string("filename", "")?;
+                if file.is_empty() {
+                    return Err(el.error("missing <string name=\"filename\">"));
+                }
+                let scale = p.float("scale", 1.0)?;
+                let to_world = Mat3::from_mat4(p.transform("to_world")?);
+                Environment::from_file(&el.dir.join(&file), scale, to_world)
+                    .map_err(|e| el.error(e))?
+            };
+            ctx.builder.environment(env);
+            ctx.has_environment = true;
+            ctx.finish(&p);
+            Ok(())
+        }
         "area" => Err(el.error("an area emitter must be nested in a <shape>")),
-        "constant" | "envmap" | "directional" | "spot" | "projector" | "sunsky" => Err(el.error(
-            format!("emitter \"{ty}\" is not yet supported (known: area, point)"),
-        )),
-        other => Err(el.error(format!("unknown emitter \"{other}\" (known: area, point)"))),
+        "directional" | "spot" | "projector" | "sunsky" => Err(el.error(format!(
+            "emitter \"{ty}\" is not supported (known: area, point, constant, envmap)"
+        ))),
+        other => Err(el.error(format!(
+            "unknown emitter \"{other}\" (known: area, point, constant, envmap)"
+        ))),
     }
 }
