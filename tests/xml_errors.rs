@@ -54,7 +54,12 @@ fn errors_name_line_column_and_element() {
         (
             scene(r#"<emitter type="envmap"/>"#),
             (4, 1),
-            &["not yet supported"],
+            &["missing <string name=\"filename\">"],
+        ),
+        (
+            scene(r#"<emitter type="spot"/>"#),
+            (4, 1),
+            &["not supported"],
         ),
         (
             scene(r#"<integrator type="path"><integer name="max_depth" value="5"/></integrator>"#),
@@ -205,4 +210,28 @@ fn garbage_and_mutated_scenes_never_panic() {
     }
     // Most mutations must break the scene; the test fails if they never reach the loader.
     assert!(errors > 200, "only {errors} of 600 inputs were rejected");
+}
+
+#[test]
+fn mitsuba_06_phong_maps_to_ours_and_microfacets_say_not_yet() {
+    let text = format!(
+        "<scene version=\"0.6.0\">\n{SENSOR}\n<shape type=\"sphere\"><bsdf type=\"phong\">\
+         <float name=\"exponent\" value=\"80\"/><rgb name=\"diffuseReflectance\" value=\"0.1 0.2 0.3\"/>\
+         </bsdf></shape></scene>"
+    );
+    let scene = load(&text).expect("phong scene").scene;
+    match &scene.materials[0] {
+        lightlab::bsdf::Material::Phong(p) => {
+            assert_eq!(p.exponent, 80.0);
+            assert_eq!(p.kd, glam::Vec3::new(0.1, 0.2, 0.3));
+            assert_eq!(p.ks, glam::Vec3::splat(0.2)); // Mitsuba 0.6's default
+        }
+        other => panic!("phong became {other:?}"),
+    }
+    let e = load(&scene_text_with("<bsdf type=\"roughplastic\"/>")).unwrap_err();
+    assert!(e.to_string().contains("not yet supported"), "{e}");
+}
+
+fn scene_text_with(bsdf: &str) -> String {
+    scene(&format!("<shape type=\"sphere\">{bsdf}</shape>"))
 }
