@@ -118,6 +118,20 @@ fn defaults_defines_and_warnings() {
 }
 
 #[test]
+fn deep_nesting_and_huge_films_are_errors() {
+    let deep = format!(
+        "<scene version=\"3.0.0\">{}{}</scene>",
+        "<shape type=\"sphere\">".repeat(100_000),
+        "</shape>".repeat(100_000)
+    );
+    let e = load(&deep).unwrap_err();
+    assert!(e.to_string().contains("nested deeper"), "{e}");
+    let huge = SENSOR.replace("value=\"8\"", "value=\"30000\"");
+    let e = load(&format!("<scene version=\"3.0.0\">{huge}</scene>")).unwrap_err();
+    assert!(e.to_string().contains("out of range"), "{e}");
+}
+
+#[test]
 fn include_cycles_stop_at_the_depth_limit() {
     let dir = std::env::temp_dir().join(format!("lightlab-include-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

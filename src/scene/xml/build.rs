@@ -33,6 +33,9 @@ const BSDFS: [&str; 7] = [
     "roughplastic",
 ];
 
+/// Largest film accepted (8192²): the film keeps ~40 bytes per pixel.
+const MAX_PIXELS: u64 = 1 << 26;
+
 /// The loader's state while building one scene.
 pub struct Context<'a> {
     ids: HashMap<&'a str, &'a Element>,
@@ -329,8 +332,10 @@ fn build_film<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(u32, u32, F
     let p = Props::new(el)?;
     let width = p.count("width", 768, 32768)?;
     let height = p.count("height", 576, 32768)?;
-    if width == 0 || height == 0 {
-        return Err(el.error("width and height must be at least 1"));
+    if width == 0 || height == 0 || width as u64 * height as u64 > MAX_PIXELS {
+        return Err(el.error(format!(
+            "image size {width}x{height} is out of range (1 to {MAX_PIXELS} pixels)"
+        )));
     }
     for ignored in ["pixel_format", "component_format", "file_format"] {
         p.ignore(ignored);

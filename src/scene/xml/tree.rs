@@ -12,6 +12,9 @@ use super::XmlError;
 /// Nesting limit of `<include>`.
 pub const MAX_INCLUDE_DEPTH: usize = 16;
 
+/// Nesting limit of elements within one file.
+pub const MAX_NESTING: usize = 64;
+
 /// Where an element starts.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Loc {
@@ -134,7 +137,7 @@ fn read_scene(path: &Path, from: Option<&Loc>, depth: usize) -> Result<Element, 
         .map(Path::to_path_buf)
         .unwrap_or_else(|| PathBuf::from("."))
         .into();
-    let mut root = convert(&doc, doc.root_element(), &name, &dir);
+    let mut root = convert(&doc, doc.root_element(), &name, &dir, 0)?;
     if root.tag != "scene" {
         return Err(root.error("the root element must be <scene version=\"...\">"));
     }
@@ -142,14 +145,28 @@ fn read_scene(path: &Path, from: Option<&Loc>, depth: usize) -> Result<Element, 
     Ok(root)
 }
 
+/// Converts a roxmltree node and its element children; nesting deeper than
+/// [`MAX_NESTING`] is an error (no scene needs it, and it bounds every recursion here).
 fn convert(
     doc: &roxmltree::Document,
     node: roxmltree::Node,
     file: &Rc<str>,
     dir: &Rc<Path>,
-) -> Element {
+    depth: usize,
+) -> Result<Element, XmlError> {
     let pos = doc.text_pos_at(node.range().start);
-    Element {
+    let loc = Loc {
+        file: file.clone(),
+        line: pos.row,
+        col: pos.col,
+    };
+    if depth > MAX_NESTING {
+        return Err(XmlError::at(
+            &loc,
+            format!("elements nested deeper than {MAX_NESTING}"),
+        ));
+    }
+    Ok(Element {
         tag: node.tag_name().name().to_owned(),
         attrs: node
             .attributes()
@@ -158,15 +175,11 @@ fn convert(
         children: node
             .children()
             .filter(|c| c.is_element())
-            .map(|c| convert(doc, c, file, dir))
-            .collect(),
-        loc: Loc {
-            file: file.clone(),
-            line: pos.row,
-            col: pos.col,
-        },
+            .map(|c| convert(doc, c, file, dir, depth + 1))
+            .collect::<Result<_, _>>()?,
+        loc,
         dir: dir.clone(),
-    }
+    })
 }
 
 /// Replaces each `<include filename="...">` by the children of the included scene.
