@@ -12,10 +12,8 @@
 //! | [`render`] | camera, render settings, parallel tile loop |
 //! | [`image`] | film (Welford statistics), EXR/PNG/PFM io, error metrics |
 //! | [`scene`] | scene builder, built-in scenes, Mitsuba XML loader, mesh files, textures, located errors |
-//! | [`lab`] | experiments (the lecture's 1D variance demo, warp plots) |
+//! | [`lab`] | experiments: references, equal-spp/equal-time comparisons, convergence plots, HTML reports, the lecture's figures, pass merging |
 //! | [`cli`] | the command line, one file per subcommand |
-//! | [`lab`] | experiments: variance tables, warp plots |
-//! | [`cli`] | one file per subcommand |
 #![warn(missing_docs)]
 
 #[macro_use]

@@ -2,7 +2,13 @@
 
 mod args;
 mod bench;
+mod compare;
+mod converge;
 mod diff;
+mod figure;
+mod lab_args;
+mod merge;
+mod reference;
 mod render;
 mod scenes;
 pub mod warp;
@@ -58,6 +64,16 @@ enum Command {
     Scenes,
     /// Draw a named warp's samples beside its histograms and run its chi-square test.
     Warp(warp::WarpArgs),
+    /// Render a reference progressively until an error target or a budget (EXR).
+    Reference(reference::ReferenceArgs),
+    /// Compare strategies at equal spp or equal time; writes an HTML report.
+    Compare(compare::CompareArgs),
+    /// Error against spp and time on log-log axes, with fitted slopes.
+    Converge(converge::ConvergeArgs),
+    /// Merge the EXR parts of a `--pass I/N` render (sample-weighted, variance kept).
+    Merge(merge::MergeArgs),
+    /// Reproduce one of the lecture's comparisons (`--list` names them).
+    Figure(figure::FigureArgs),
     /// Throughput figures: rays/s, BVH build time, samples/s per estimator (medians).
     Bench(bench::BenchArgs),
 }
@@ -76,6 +92,11 @@ pub fn main() -> i32 {
         Command::Diff(a) => diff::run(&a),
         Command::Scenes => scenes::run(),
         Command::Warp(a) => warp::run(&a).map_err(CliError::input),
+        Command::Reference(a) => reference::run(&a),
+        Command::Compare(a) => compare::run(&a),
+        Command::Converge(a) => converge::run(&a),
+        Command::Merge(a) => merge::run(&a),
+        Command::Figure(a) => figure::run(&a),
         Command::Bench(a) => bench::run(&a),
     };
     match result {

@@ -47,13 +47,26 @@ pub struct LoadedImage {
     pub variance: Option<Vec<Spectrum>>,
     /// Samples per pixel, if stored.
     pub spp: Option<u32>,
+    /// Text attributes of an EXR header (name, value), e.g. `lightlab.settings`.
+    pub metadata: Vec<(String, String)>,
 }
 
 /// Writes `film` to `path` by extension: `.exr` (float RGB + variance + spp) or `.png`
 /// (sRGB, scaled by 2^exposure). Other extensions are an error.
 pub fn write_film(film: &Film, path: &Path, exposure: f32) -> Result<(), ImageError> {
+    write_film_with_metadata(film, path, exposure, &[])
+}
+
+/// [`write_film`] with text attributes (name, value) stored in an EXR header; other
+/// formats have no place for them and drop them.
+pub fn write_film_with_metadata(
+    film: &Film,
+    path: &Path,
+    exposure: f32,
+    metadata: &[(String, String)],
+) -> Result<(), ImageError> {
     match extension(path).as_str() {
-        "exr" => write_exr(film, path),
+        "exr" => write_exr(film, path, metadata),
         "png" => write_png(film.width, film.height, &film.means(), path, exposure),
         "pfm" => write_pfm(film.width, film.height, &film.means(), path),
         other => Err(image_error(
@@ -167,7 +180,7 @@ pub fn write_pfm(width: u32, height: u32, rgb: &[Spectrum], path: &Path) -> Resu
     write_atomically(path, |tmp| fs::write(tmp, &out).map_err(|e| e.to_string()))
 }
 
-fn write_exr(film: &Film, path: &Path) -> Result<(), ImageError> {
+fn write_exr(film: &Film, path: &Path, metadata: &[(String, String)]) -> Result<(), ImageError> {
     let size = (film.width as usize, film.height as usize);
     let channel = |name: &str, f: &dyn Fn(&PixelStats) -> f32| {
         AnyChannel::new(name, FlatSamples::F32(film.pixels.iter().map(f).collect()))
@@ -186,6 +199,18 @@ fn write_exr(film: &Film, path: &Path) -> Result<(), ImageError> {
     attributes
         .other
         .insert(Text::from("spp"), AttributeValue::I32(spp as i32));
+    for (name, value) in metadata {
+        if name == "spp" || name.is_empty() {
+            return Err(image_error(
+                path,
+                format!("bad EXR attribute name \"{name}\""),
+            ));
+        }
+        attributes.other.insert(
+            Text::from(name.as_str()),
+            AttributeValue::Text(Text::from(value.as_str())),
+        );
+    }
     let layer = Layer::new(
         size,
         attributes,
@@ -233,6 +258,7 @@ fn read_hdr(path: &Path) -> Result<LoadedImage, ImageError> {
         rgb,
         variance: None,
         spp: None,
+        metadata: Vec::new(),
     })
 }
 
@@ -275,12 +301,22 @@ fn read_exr(path: &Path) -> Result<LoadedImage, ImageError> {
             Some(AttributeValue::I32(v)) if *v >= 0 => Some(*v as u32),
             _ => None,
         });
+    let mut metadata: Vec<(String, String)> = [&image.attributes.other, &layer.attributes.other]
+        .iter()
+        .flat_map(|m| m.iter())
+        .filter_map(|(k, v)| match v {
+            AttributeValue::Text(t) => Some((k.to_string(), t.to_string())),
+            _ => None,
+        })
+        .collect();
+    metadata.sort();
     Ok(LoadedImage {
         width: w as u32,
         height: h as u32,
         rgb: zip3(r, g, b),
         variance,
         spp,
+        metadata,
     })
 }
 
@@ -298,6 +334,7 @@ fn read_png(path: &Path) -> Result<LoadedImage, ImageError> {
         rgb,
         variance: None,
         spp: None,
+        metadata: Vec::new(),
     })
 }
 
@@ -363,6 +400,7 @@ fn read_pfm(path: &Path) -> Result<LoadedImage, ImageError> {
         rgb,
         variance: None,
         spp: None,
+        metadata: Vec::new(),
     })
 }
 
@@ -381,9 +419,11 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("lightlab-io-{}", std::process::id()));
         fs::create_dir_all(&dir).unwrap();
         let path = dir.join("t.exr");
-        write_film(&film, &path, 0.0).unwrap();
+        let meta = [("lightlab.note".to_string(), "a b".to_string())];
+        write_film_with_metadata(&film, &path, 0.0, &meta).unwrap();
         let img = read_image(&path).unwrap();
         assert_eq!((img.width, img.height, img.spp), (3, 2, Some(4)));
+        assert_eq!(img.metadata, meta);
         assert_eq!(img.rgb, film.means());
         let var = img.variance.unwrap();
         assert!((var[0].y - film.pixels[0].variance_of_mean().y).abs() < 1e-6);

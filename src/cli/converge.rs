@@ -1,0 +1,64 @@
+//! `lightlab converge SCENE --strategies A,B,C --max-spp N [--reference REF] -o DIR`.
+
+use std::path::PathBuf;
+
+use clap::Args;
+
+use super::CliError;
+use super::compare::reference_source;
+use super::lab_args::LabRenderArgs;
+use super::render::{STOP, install_stop_handler};
+use crate::lab::converge::{ConvergeConfig, run_converge};
+use crate::lab::strategy::Strategy;
+
+/// Arguments of `converge`.
+#[derive(Args, Debug)]
+pub struct ConvergeArgs {
+    /// The scene: `builtin:NAME`.
+    pub scene: String,
+    /// Comma-separated strategies (as for `compare`).
+    #[arg(long, required = true)]
+    pub strategies: String,
+    /// Largest samples per pixel (points at 1, 2, 4, ... up to it).
+    #[arg(long)]
+    pub max_spp: u32,
+    /// Seeds per point (each point averages them; bars show their spread).
+    #[arg(long, default_value_t = 4)]
+    pub seeds: u32,
+    /// Reference image; default: render one with the renderer's default strategy at
+    /// --reference-spp.
+    #[arg(long)]
+    pub reference: Option<PathBuf>,
+    /// Samples per pixel of a rendered reference (default: 16 × --max-spp).
+    #[arg(long)]
+    pub reference_spp: Option<u32>,
+    #[command(flatten)]
+    pub render: LabRenderArgs,
+    /// Output folder.
+    #[arg(short, long)]
+    pub output: PathBuf,
+}
+
+/// Runs `converge`.
+pub fn run(args: &ConvergeArgs) -> Result<(), CliError> {
+    let strategies = Strategy::parse_list(&args.strategies).map_err(CliError::input)?;
+    let ref_spp = args
+        .reference_spp
+        .unwrap_or(args.max_spp.saturating_mul(16));
+    let config = ConvergeConfig {
+        scene: args.scene.clone(),
+        reference: reference_source(&args.reference, ref_spp)?,
+        strategies,
+        max_spp: args.max_spp,
+        seeds: args.seeds,
+        base_flags: args.render.base_flags(),
+        title: None,
+    };
+    install_stop_handler();
+    let log = |line: &str| eprintln!("{line}");
+    args.render
+        .install(|| run_converge(&config, &args.output, &STOP, &log))?
+        .map_err(CliError::input)?;
+    eprintln!("report: {}", args.output.join("index.html").display());
+    Ok(())
+}

@@ -1,0 +1,76 @@
+//! `lightlab figure NAME -o DIR`: one of the lecture's comparisons; `--list` names them.
+
+use std::path::PathBuf;
+
+use clap::Args;
+
+use super::CliError;
+use super::lab_args::LabRenderArgs;
+use super::render::{STOP, install_stop_handler};
+use crate::lab::figure::{FIGURES, FigureOptions, find, plan, run_figure};
+
+/// Arguments of `figure`.
+#[derive(Args, Debug)]
+pub struct FigureArgs {
+    /// The figure (see --list).
+    pub name: Option<String>,
+    /// List the figures, saying which this build can make.
+    #[arg(long)]
+    pub list: bool,
+    /// Override the figure's equal spp.
+    #[arg(long)]
+    pub spp: Option<u32>,
+    /// Override the reference spp.
+    #[arg(long)]
+    pub reference_spp: Option<u32>,
+    /// Also plot relMSE against spp and time up to this spp (4 seeds per point).
+    #[arg(long)]
+    pub converge: Option<u32>,
+    #[command(flatten)]
+    pub render: LabRenderArgs,
+    /// Output folder.
+    #[arg(short, long, default_value = "figure")]
+    pub output: PathBuf,
+}
+
+/// Runs `figure`.
+pub fn run(args: &FigureArgs) -> Result<(), CliError> {
+    let options = FigureOptions {
+        base_flags: args.render.base_flags(),
+        spp: args.spp,
+        reference_spp: args.reference_spp,
+        converge: args.converge,
+    };
+    if [args.spp, args.reference_spp, args.converge].contains(&Some(0)) {
+        return Err(CliError::input(
+            "--spp, --reference-spp and --converge must be at least 1",
+        ));
+    }
+    if args.list {
+        for f in FIGURES {
+            let status = match plan(f, &options) {
+                Ok(_) => "ready".to_string(),
+                Err(e) => e.to_string(),
+            };
+            println!("{:14} {}\n{:14} ({status})", f.name, f.description, "");
+        }
+        return Ok(());
+    }
+    let name = args
+        .name
+        .as_deref()
+        .ok_or_else(|| CliError::input("give a figure name, or --list to see them"))?;
+    let figure = find(name).map_err(CliError::input)?;
+    install_stop_handler();
+    let log = |line: &str| eprintln!("{line}");
+    let panels = args
+        .render
+        .install(|| run_figure(figure, &options, &args.output, &STOP, &log))?
+        .map_err(CliError::input)?;
+    for (panel, results) in &panels {
+        println!("## {panel}");
+        print!("{}", crate::lab::compare::results_table(results).markdown());
+    }
+    eprintln!("report: {}", args.output.join("index.html").display());
+    Ok(())
+}

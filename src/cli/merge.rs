@@ -1,0 +1,45 @@
+//! `lightlab merge PART... -o out.exr`: sample-weighted merge of `--pass` parts,
+//! variance kept.
+
+use std::path::PathBuf;
+
+use clap::Args;
+
+use super::CliError;
+use crate::image::io::write_film_with_metadata;
+use crate::lab::merge::merge_files;
+
+/// Arguments of `merge`.
+#[derive(Args, Debug)]
+pub struct MergeArgs {
+    /// The EXR parts (from `render --pass I/N -o part.exr`).
+    #[arg(required = true)]
+    pub parts: Vec<PathBuf>,
+    /// Output EXR.
+    #[arg(short, long)]
+    pub output: PathBuf,
+}
+
+/// Runs `merge`.
+pub fn run(args: &MergeArgs) -> Result<(), CliError> {
+    if !args
+        .output
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("exr"))
+    {
+        return Err(CliError::input(
+            "merge writes .exr (variance and spp are kept)",
+        ));
+    }
+    let film = merge_files(&args.parts).map_err(CliError::input)?;
+    let parts: Vec<String> = args.parts.iter().map(|p| p.display().to_string()).collect();
+    let metadata = vec![("lightlab.merged_from".to_string(), parts.join(" "))];
+    write_film_with_metadata(&film, &args.output, 0.0, &metadata).map_err(CliError::failure)?;
+    let spp = film.pixels.iter().map(|p| p.count).min().unwrap_or(0);
+    eprintln!(
+        "merged {} parts: {spp} spp -> {}",
+        args.parts.len(),
+        args.output.display()
+    );
+    Ok(())
+}

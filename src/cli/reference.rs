@@ -1,0 +1,142 @@
+//! `lightlab reference SCENE [strategy flags] [--rel-error E] [--spp N] [--time SECS]
+//! -o ref.exr`: progressive passes until the error target or a budget; the EXR header
+//! records spp, time, settings, the error estimate and the command.
+
+use std::path::PathBuf;
+use std::time::Duration;
+
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+
+use super::render::{STOP, install_stop_handler};
+use super::{CliError, StrategyArgs};
+use crate::image::io::write_film_with_metadata;
+use crate::lab::reference::{ReferenceTarget, render_reference};
+use crate::lab::report::{VERSION, command_line};
+use crate::scene;
+
+/// Arguments of `reference`.
+#[derive(Args, Debug)]
+pub struct ReferenceArgs {
+    /// The scene: `builtin:NAME`.
+    pub scene: String,
+    /// Set a scene file parameter: `-D spp=64` replaces `<default name="spp" .../>`.
+    #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = super::args::parse_define)]
+    pub define: Vec<(String, String)>,
+    #[command(flatten)]
+    pub strategy: StrategyArgs,
+    /// Stop when the relative standard error of the image mean and of 90% of the pixels
+    /// is below this (e.g. 0.01).
+    #[arg(long)]
+    pub rel_error: Option<f64>,
+    /// Time budget in seconds.
+    #[arg(long)]
+    pub time: Option<f64>,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Output EXR.
+    #[arg(short, long, default_value = "reference.exr")]
+    pub output: PathBuf,
+}
+
+/// Runs `reference`.
+pub fn run(args: &ReferenceArgs) -> Result<(), CliError> {
+    if args.strategy.pass.is_some() {
+        return Err(CliError::input(
+            "reference renders whole images; --pass does not apply",
+        ));
+    }
+    if !args
+        .output
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("exr"))
+    {
+        return Err(CliError::input(
+            "the reference must be an .exr file (it keeps variance and metadata)",
+        ));
+    }
+    let target = ReferenceTarget {
+        rel_error: args.rel_error,
+        max_spp: args.strategy.spp,
+        max_time: match args.time {
+            Some(t) if t.is_finite() && t > 0.0 => Some(Duration::from_secs_f64(t)),
+            Some(t) => return Err(CliError::input(format!("--time must be positive, not {t}"))),
+            None => None,
+        },
+    };
+    match target.rel_error {
+        Some(e) if !(e.is_finite() && e > 0.0) => {
+            return Err(CliError::input(format!(
+                "--rel-error must be positive, not {e}"
+            )));
+        }
+        None if target.max_spp.is_none() && target.max_time.is_none() => {
+            return Err(CliError::input("give --rel-error, --spp or --time"));
+        }
+        _ => {}
+    }
+    let scene = scene::load_with(&args.scene, &args.define).map_err(CliError::input)?;
+    let settings = args.strategy.settings(&scene)?;
+    install_stop_handler();
+    let bar = ProgressBar::new_spinner();
+    if let Ok(style) = ProgressStyle::with_template("{spinner} [{elapsed_precise}] {msg}") {
+        bar.set_style(style);
+    }
+    bar.enable_steady_tick(Duration::from_millis(200));
+    let progress = |spp: u32, e: &crate::lab::reference::ErrorEstimate| {
+        bar.set_message(format!(
+            "{spp} spp, relative error {:.2e} (mean), {:.2e} (90% of pixels)",
+            e.mean_rel_error, e.pixel_rel_error
+        ))
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads.unwrap_or(0))
+        .build()
+        .map_err(CliError::failure)?;
+    let r = pool.install(|| render_reference(&scene, &settings, &target, &STOP, &progress));
+    bar.finish_and_clear();
+    let out = &r.output;
+    let final_settings = crate::render::RenderSettings {
+        spp: out.spp,
+        ..settings.clone()
+    };
+    let metadata: Vec<(String, String)> = [
+        ("lightlab.version", VERSION.to_string()),
+        ("lightlab.command", command_line()),
+        ("lightlab.scene", scene.name.clone()),
+        ("lightlab.settings", final_settings.flags()),
+        ("lightlab.time_s", format!("{:.3}", out.time.as_secs_f64())),
+        ("lightlab.passes", r.passes.to_string()),
+        (
+            "lightlab.rel_error_mean",
+            format!("{:.4e}", r.error.mean_rel_error),
+        ),
+        (
+            "lightlab.rel_error_pixel_q90",
+            format!("{:.4e}", r.error.pixel_rel_error),
+        ),
+        ("lightlab.converged", r.converged.to_string()),
+        ("lightlab.invalid_samples", out.invalid_samples.to_string()),
+    ]
+    .into_iter()
+    .map(|(k, v)| (k.to_string(), v))
+    .collect();
+    write_film_with_metadata(&out.film, &args.output, 0.0, &metadata).map_err(CliError::failure)?;
+    eprintln!(
+        "{}: {} spp in {} passes, {:.2} s; relative error {:.2e} (image mean), {:.2e} (90% of pixels){} -> {}",
+        scene.name,
+        out.spp,
+        r.passes,
+        out.time.as_secs_f64(),
+        r.error.mean_rel_error,
+        r.error.pixel_rel_error,
+        match (args.rel_error, r.converged) {
+            (Some(_), true) => ", target met",
+            (Some(_), false) => ", target NOT met (budget ran out)",
+            _ => "",
+        },
+        args.output.display()
+    );
+    Ok(())
+}

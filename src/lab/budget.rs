@@ -1,0 +1,170 @@
+//! Sample budgets of an experiment: a fixed number of samples per pixel, or a wall-clock
+//! time filled by rendering in rounds.
+//!
+//! A timed render runs rounds with decorrelated seeds (round 0 uses the strategy's own
+//! seed) and merges their films (Chan et al. 1979, `Film::merge`): independent
+//! unbiased estimates, so the merged image is unbiased with the pooled variance. Each
+//! round asks for about a quarter of the time left at the speed measured so far, so the
+//! total converges to the budget from below; rounds stop when less than half a sample per
+//! pixel of time is left, or when a watcher thread signals the deadline (`render` then
+//! finishes its current internal round, an eighth of the call).
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+use crate::render::{Control, RenderOutput, RenderSettings, render};
+use crate::scene::Scene;
+
+/// How much work each strategy gets.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Budget {
+    /// Equal samples per pixel.
+    Spp(u32),
+    /// Equal wall-clock time.
+    Time(Duration),
+}
+
+impl Budget {
+    /// `equal spp (N)` or `equal time (S s)`.
+    pub fn describe(&self) -> String {
+        match self {
+            Budget::Spp(n) => format!("equal spp ({n} spp)"),
+            Budget::Time(t) => format!("equal time ({:.2} s)", t.as_secs_f64()),
+        }
+    }
+}
+
+/// The seed of round `k` of a timed or progressive render: the base seed for round 0,
+/// a decorrelated one after (the seed is hashed with the pixel, so any distinct value
+/// gives independent streams).
+pub fn round_seed(seed: u64, k: u32) -> u64 {
+    if k == 0 {
+        seed
+    } else {
+        seed ^ (k as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15)
+    }
+}
+
+/// Renders `settings` (whose `spp` is ignored for a time budget) within `budget`.
+/// A stop request ends the render after the current round.
+pub fn render_budget(
+    scene: &Scene,
+    settings: &RenderSettings,
+    budget: Budget,
+    stop: &AtomicBool,
+) -> RenderOutput {
+    let control = Control {
+        progress: &|_, _| {},
+        stop,
+    };
+    match budget {
+        Budget::Spp(n) => {
+            let s = RenderSettings {
+                spp: n,
+                ..settings.clone()
+            };
+            render(scene, &s, &control)
+        }
+        Budget::Time(limit) => render_timed(scene, settings, limit, &control),
+    }
+}
+
+fn render_timed(
+    scene: &Scene,
+    settings: &RenderSettings,
+    limit: Duration,
+    control: &Control<'_>,
+) -> RenderOutput {
+    let start = Instant::now();
+    // A watcher raises `deadline` at the budget (or on an outside stop request), so a
+    // round whose speed estimate was too optimistic still ends within one of `render`'s
+    // own rounds (an eighth of the call).
+    let deadline = AtomicBool::new(false);
+    let finished = AtomicBool::new(false);
+    let timed = Control {
+        progress: control.progress,
+        stop: &deadline,
+    };
+    let out = std::thread::scope(|scope| {
+        scope.spawn(|| {
+            while !finished.load(Ordering::Relaxed) {
+                if control.stop.load(Ordering::Relaxed) || start.elapsed() >= limit {
+                    deadline.store(true, Ordering::Relaxed);
+                    break;
+                }
+                std::thread::sleep(Duration::from_micros(500));
+            }
+        });
+        let out = rounds(scene, settings, limit, start, &timed);
+        finished.store(true, Ordering::Relaxed);
+        out
+    });
+    RenderOutput {
+        time: start.elapsed(),
+        stopped: control.stop.load(Ordering::Relaxed),
+        ..out
+    }
+}
+
+/// The rounds of a timed render (see the module docs).
+fn rounds(
+    scene: &Scene,
+    settings: &RenderSettings,
+    limit: Duration,
+    start: Instant,
+    control: &Control<'_>,
+) -> RenderOutput {
+    let mut spp_next = 1u32;
+    let mut total: Option<RenderOutput> = None;
+    for k in 0.. {
+        let s = RenderSettings {
+            spp: spp_next,
+            seed: round_seed(settings.seed, k),
+            ..settings.clone()
+        };
+        let out = render(scene, &s, control);
+        let merged = match total.take() {
+            None => out,
+            Some(t) if out.spp == 0 => t,
+            Some(t) => RenderOutput {
+                film: t.film.merge(&out.film).unwrap_or(t.film),
+                time: Duration::ZERO,
+                spp: t.spp + out.spp,
+                invalid_samples: t.invalid_samples + out.invalid_samples,
+                stopped: out.stopped,
+            },
+        };
+        let elapsed = start.elapsed().as_secs_f64();
+        let per_spp = elapsed / merged.spp.max(1) as f64;
+        let left = limit.as_secs_f64() - elapsed;
+        let stopped = control.stop.load(Ordering::Relaxed);
+        total = Some(merged);
+        if stopped || left < 0.5 * per_spp {
+            break;
+        }
+        // A quarter of the time left, at least one spp: converges to the budget from
+        // below, and a round cut by the deadline overshoots by at most an eighth of it.
+        spp_next = ((0.25 * left / per_spp).ceil() as u32).max(1);
+    }
+    total.expect("at least one round ran")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene;
+
+    #[test]
+    fn timed_render_fills_the_budget() {
+        let scene = scene::load("builtin:assignment").unwrap();
+        let mut s = RenderSettings::for_scene(&scene);
+        s.resolution = Some((32, 24));
+        let stop = AtomicBool::new(false);
+        let limit = Duration::from_millis(300);
+        let out = render_budget(&scene, &s, Budget::Time(limit), &stop);
+        let t = out.time.as_secs_f64();
+        assert!((t - 0.3).abs() < 0.03, "time {t}");
+        assert!(out.film.pixels.iter().all(|p| p.count == out.spp));
+        assert_ne!(round_seed(3, 1), 3);
+    }
+}

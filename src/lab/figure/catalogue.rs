@@ -1,0 +1,142 @@
+//! The catalogue of the lecture's figures: scenes and labelled strategy flags, as data.
+
+use super::{Figure, FigureKind, Panel};
+
+const LIGHT_REF: &[&str] = &["--estimator mis", "--estimator light"];
+
+/// Every figure, in lecture order.
+pub const FIGURES: &[Figure] = &[
+    Figure {
+        name: "variance-1d",
+        description: "∫cos x vs ∫4cos¹⁶x on [0, π/2]: uniform, cosine and tabulated densities",
+        kind: FigureKind::Variance1d,
+    },
+    Figure {
+        name: "assignment",
+        description: "uniform hemisphere vs cosine vs BRDF vs light sampling on the assignment scene",
+        kind: FigureKind::Panels(&[Panel {
+            title: "assignment",
+            scene: "builtin:assignment",
+            strategies: &[
+                ("uniform hemisphere", "--estimator hemisphere"),
+                ("cosine", "--estimator cosine"),
+                ("BRDF", "--estimator bsdf"),
+                ("light", "--estimator light"),
+            ],
+            spp: 16,
+            reference: LIGHT_REF,
+            reference_spp: 1024,
+        }]),
+    },
+    Figure {
+        name: "sphere-light",
+        description: "a spherical light near a plane: p1 area, p2 visible area, p3 solid angle, p4 ∝ G",
+        kind: FigureKind::Panels(&[Panel {
+            title: "sphere-light",
+            scene: "builtin:sphere-near-plane",
+            strategies: &[
+                ("p1 area", "--estimator light --light-sampling area"),
+                (
+                    "p2 visible area",
+                    "--estimator light --light-sampling visible-area",
+                ),
+                (
+                    "p3 solid angle",
+                    "--estimator light --light-sampling solid-angle",
+                ),
+                (
+                    "p4 geometric",
+                    "--estimator light --light-sampling geometric",
+                ),
+            ],
+            spp: 16,
+            reference: &[
+                "--estimator mis --light-sampling solid-angle",
+                "--estimator light --light-sampling solid-angle",
+            ],
+            reference_spp: 1024,
+        }]),
+    },
+    Figure {
+        name: "lights-shapes",
+        description: "uniform area vs solid-angle sampling of a rectangle, a triangle and a polygon",
+        kind: FigureKind::Panels(&[
+            shape_panel("rectangle", "builtin:rectangle-light"),
+            shape_panel("triangle", "builtin:triangle-light"),
+            shape_panel("polygon", "builtin:polygon-light"),
+        ]),
+    },
+    Figure {
+        name: "many-lights",
+        description: "uniform vs power vs adaptive vs BVH light selection, shirley-100 at 49 spp",
+        kind: FigureKind::Panels(&[Panel {
+            title: "many-lights",
+            scene: "builtin:shirley-100",
+            strategies: &[
+                ("uniform", "--estimator light --light-select uniform"),
+                ("power", "--estimator light --light-select power"),
+                ("adaptive", "--estimator light --light-select adaptive"),
+                ("bvh", "--estimator light --light-select bvh"),
+            ],
+            spp: 49,
+            reference: &[
+                "--estimator mis --light-select bvh",
+                "--estimator light --light-select bvh",
+            ],
+            reference_spp: 2048,
+        }]),
+    },
+    Figure {
+        name: "veach-mis",
+        description: "Veach's plates: light sampling vs BRDF sampling vs MIS",
+        kind: FigureKind::Panels(&[Panel {
+            title: "veach-mis",
+            scene: "builtin:veach-mis",
+            strategies: &[
+                ("light", "--estimator light"),
+                ("BRDF", "--estimator bsdf"),
+                ("MIS", "--estimator mis"),
+            ],
+            spp: 16,
+            reference: &["--estimator mis"],
+            reference_spp: 1024,
+        }]),
+    },
+    Figure {
+        name: "envmap",
+        description: "environment lighting: cosine vs BRDF vs environment-map sampling vs MIS",
+        kind: FigureKind::Panels(&[Panel {
+            title: "envmap",
+            scene: "builtin:envmap",
+            strategies: &[
+                ("cosine", "--estimator cosine"),
+                ("BRDF", "--estimator bsdf"),
+                ("light (envmap)", "--estimator light"),
+                ("MIS", "--estimator mis"),
+            ],
+            spp: 16,
+            reference: &["--estimator mis"],
+            reference_spp: 1024,
+        }]),
+    },
+];
+
+const fn shape_panel(title: &'static str, scene: &'static str) -> Panel {
+    Panel {
+        title,
+        scene,
+        strategies: &[
+            ("area", "--estimator light --light-sampling area"),
+            (
+                "solid angle",
+                "--estimator light --light-sampling solid-angle",
+            ),
+        ],
+        spp: 16,
+        reference: &[
+            "--estimator mis --light-sampling solid-angle",
+            "--estimator light --light-sampling solid-angle",
+        ],
+        reference_spp: 1024,
+    }
+}
