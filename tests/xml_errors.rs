@@ -249,3 +249,19 @@ fn mitsuba_06_phong_maps_to_ours_and_microfacets_say_not_yet() {
 fn scene_text_with(bsdf: &str) -> String {
     scene(&format!("<shape type=\"sphere\">{bsdf}</shape>"))
 }
+
+#[test]
+fn legacy_look_at_is_upgraded() {
+    let sensor = r#"<sensor type="perspective"><float name="fov" value="40"/>
+<transform name="toWorld"><lookAt origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
+<film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film></sensor>"#;
+    let loaded = load(&format!("<scene version=\"0.5.0\">{sensor}</scene>")).expect("0.5 scene");
+    assert!(loaded.warnings.is_empty(), "{:?}", loaded.warnings);
+    // The camera sits at z = 5 looking at the origin.
+    let ray = loaded.scene.camera.ray(glam::Vec2::new(4.0, 4.0));
+    assert!(
+        (ray.d - glam::Vec3::new(0.0, 0.0, -1.0)).length() < 1e-3,
+        "{:?}",
+        ray.d
+    );
+}

@@ -67,7 +67,7 @@ const CASES: &[(&str, &str, Option<&str>)] = &[
     ),
     (
         "legacy_v06",
-        "version 0.6 upgrade (toWorld, lookAt, sampleCount, fovAxis, nearClip, emitterSamples), scale x=-1 camera, bsdf_samples 2",
+        "version 0.6 upgrade (toWorld, sampleCount, fovAxis, nearClip, emitterSamples, bsdfSamples), scale x=-1 camera, bsdf_samples 2",
         None,
     ),
     (
