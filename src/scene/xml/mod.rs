@@ -1,12 +1,13 @@
 //! Mitsuba XML scenes (Mitsuba 3's format, and 0.5/0.6 files upgraded as Mitsuba 3 does):
 //! `tree` parses text into located elements (includes, defaults, `$name` substitution,
 //! version upgrade), `props` reads typed properties, `build` resolves ids and refs and
-//! turns plugins into a [`Scene`] through the [`SceneBuilder`](super::SceneBuilder), and
+//! turns plugins (with `sensor`, `shapes` and `bitmap`) into a [`Scene`] through the [`SceneBuilder`](super::SceneBuilder), and
 //! `shapes` builds the geometry. Every error names the file, line, column and element.
 
 mod bitmap;
 mod build;
 mod props;
+mod sensor;
 mod shapes;
 mod tree;
 
