@@ -6,7 +6,13 @@ Usage: python3 tests/scenes/make_refs.py [--spp N] [--variant V] [NAME ...]
 Each scene's `$spp` default is replaced by --spp (default 8192). The variant defaults
 to llvm_ad_rgb when DRJIT_LIBLLVM_PATH is set, else scalar_rgb; both give the same
 expectation. Scenes that use a BSDF lightlab does not have yet are rendered too: their
-test is skipped until the BSDF lands. Output: tests/scenes/refs/NAME.exr (RGB, float32).
+test is skipped until the BSDF lands. Output: tests/scenes/refs/NAME.exr with R, G, B (the
+mean of 8 independent passes, seeds 0-7) and variance.R/G/B (the variance of that mean,
+from the spread of the passes), float32. The meshes and textures the scenes use come from
+make_meshes.py and are committed.
+
+The references in the repository: Mitsuba 3.9.1, llvm_ad_rgb, 8192 spp
+(DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM-19.so from Debian's libllvm19).
 """
 import argparse
 import os
