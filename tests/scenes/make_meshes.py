@@ -1,7 +1,10 @@
 #!/usr/bin/env python3
-"""Writes the small meshes the conformance scenes use (run once; outputs are committed):
-meshes/torus.obj (no normals: Mitsuba smooths it), meshes/ball.ply (binary, normals and
-uv), meshes/shapes.serialized (two shapes, version 4, zlib)."""
+"""Writes the small meshes and textures the conformance scenes use (run once; outputs are
+committed): meshes/torus.obj (no normals: Mitsuba smooths it), meshes/ball.ply (binary,
+normals and uv), meshes/shapes.serialized (two shapes, version 4, zlib), and
+textures/checker.png, textures/quadrants.jpg (flat 8x8 blocks, so JPEG decoders agree),
+textures/ramp.exr and textures/sky.exr (a lat-long sky with a small sun; needs Pillow and
+mitsuba). meshes/quad_uv.obj is written by hand."""
 import math
 import os
 import struct
@@ -78,5 +81,39 @@ def main():
         out.write(data)
 
 
+def textures():
+    from PIL import Image
+    import mitsuba as mi
+    mi.set_variant("scalar_rgb")
+    d = os.path.join(os.path.dirname(HERE), "textures")
+    os.makedirs(d, exist_ok=True)
+    im = Image.new("RGB", (8, 8))
+    for y in range(8):
+        for x in range(8):
+            im.putpixel((x, y), (230, 200, 60) if (x + y) % 2 == 0 else (40, 90, 180))
+    im.save(os.path.join(d, "checker.png"))
+    im = Image.new("RGB", (16, 16))
+    cols = [(200, 60, 60), (60, 200, 60), (60, 60, 200), (220, 220, 220)]
+    for y in range(16):
+        for x in range(16):
+            im.putpixel((x, y), cols[(y // 8) * 2 + x // 8])
+    im.save(os.path.join(d, "quadrants.jpg"), quality=95)
+    ramp = []
+    for y in range(2):
+        for x in range(4):
+            ramp += [0.1 + 0.25 * x, 0.2 + 0.3 * y, 0.5]
+    mi.Bitmap(mi.TensorXf(ramp, (2, 4, 3))).write(os.path.join(d, "ramp.exr"))
+    W, H, sky = 32, 16, []
+    for j in range(H):
+        for i in range(W):
+            t = j / (H - 1)
+            rgb = [0.3 + 0.5 * (1 - t), 0.4 + 0.5 * (1 - t), 0.8 * (1 - t) + 0.1]
+            if abs(i - 20) <= 1 and abs(j - 4) <= 1:
+                rgb = [20, 18, 14]
+            sky += rgb
+    mi.Bitmap(mi.TensorXf(sky, (H, W, 3))).write(os.path.join(d, "sky.exr"))
+
+
 if __name__ == "__main__":
     main()
+    textures()
