@@ -265,3 +265,11 @@ fn legacy_look_at_is_upgraded() {
         ray.d
     );
 }
+
+#[test]
+fn definitions_ride_in_the_scene_name() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/scenes/cbox_diffuse.xml");
+    let spec = format!("{}?spp=5", path.display());
+    assert_eq!(lightlab::scene::load(&spec).expect("scene").spp, 5);
+    assert!(lightlab::scene::load(&format!("{}?spp", path.display())).is_err());
+}

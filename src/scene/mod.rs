@@ -90,7 +90,9 @@ pub fn load(spec: &str) -> Result<Scene, SceneError> {
 }
 
 /// Loads `builtin:NAME` or a Mitsuba XML file with `-D name=value` definitions; the
-/// loader's located warnings are printed to stderr.
+/// loader's located warnings are printed to stderr. A file may also carry definitions
+/// in its name, as built-in scenes carry parameters: `scene.xml?spp=64&fov=30` (used
+/// when no file has that exact name), so every command that takes a scene can set them.
 pub fn load_with(spec: &str, defines: &[(String, String)]) -> Result<Scene, SceneError> {
     match spec.strip_prefix("builtin:") {
         Some(name) => {
@@ -104,11 +106,34 @@ pub fn load_with(spec: &str, defines: &[(String, String)]) -> Result<Scene, Scen
             builtin::build(name)
         }
         None => {
-            let loaded = xml::load(std::path::Path::new(spec), defines)?;
+            let (path, mut all) = split_defines(spec)?;
+            all.extend_from_slice(defines);
+            let loaded = xml::load(std::path::Path::new(path), &all)?;
             for w in &loaded.warnings {
                 eprintln!("warning: {w}");
             }
             Ok(loaded.scene)
         }
+    }
+}
+
+/// `file.xml?a=1&b=2` → (`file.xml`, [(a, 1), (b, 2)]) unless a file is named `spec`.
+fn split_defines(spec: &str) -> Result<(&str, Vec<(String, String)>), SceneError> {
+    match spec.split_once('?') {
+        Some((path, query)) if !std::path::Path::new(spec).exists() => {
+            let defines = query
+                .split('&')
+                .map(|kv| match kv.split_once('=') {
+                    Some((k, v)) if !k.is_empty() => Ok((k.to_owned(), v.to_owned())),
+                    _ => Err(SceneError::new(
+                        spec,
+                        None,
+                        format!("bad parameter \"{kv}\" (expected NAME=VALUE)"),
+                    )),
+                })
+                .collect::<Result<_, _>>()?;
+            Ok((path, defines))
+        }
+        _ => Ok((spec, Vec::new())),
     }
 }
