@@ -117,8 +117,11 @@ pub fn load_with(spec: &str, defines: &[(String, String)]) -> Result<Scene, Scen
     }
 }
 
+/// `-D name=value` pairs.
+pub type Defines = Vec<(String, String)>;
+
 /// `file.xml?a=1&b=2` → (`file.xml`, [(a, 1), (b, 2)]) unless a file is named `spec`.
-fn split_defines(spec: &str) -> Result<(&str, Vec<(String, String)>), SceneError> {
+fn split_defines(spec: &str) -> Result<(&str, Defines), SceneError> {
     match spec.split_once('?') {
         Some((path, query)) if !std::path::Path::new(spec).exists() => {
             let defines = query
