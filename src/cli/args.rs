@@ -25,7 +25,8 @@ pub struct StrategyArgs {
     /// BSDF samples per estimate of the `mis` estimator.
     #[arg(long)]
     pub bsdf_samples: Option<u32>,
-    /// Area-light sampling strategy: area.
+    /// Area-light sampling strategy: area, visible-area, solid-angle, geometric, best (default;
+    /// per shape). A shape without the chosen strategy uses area.
     #[arg(long)]
     pub light_sampling: Option<LightSampling>,
     /// Light selection among many lights: uniform, power, adaptive, bvh (default).

@@ -157,6 +157,28 @@ impl Light {
                     two_sided: l.two_sided,
                 }
             }
+            Light::Polygon(l) => {
+                let phi = luminance(l.radiance).max(0.0) * l.polygon.area();
+                let v = l.polygon.vertices();
+                let aabb = v.iter().fold(
+                    Aabb {
+                        min: v[0],
+                        max: v[0],
+                    },
+                    |b, &p| Aabb {
+                        min: b.min.min(p),
+                        max: b.max.max(p),
+                    },
+                );
+                LightBounds {
+                    aabb,
+                    phi: if phi.is_finite() { phi } else { 0.0 },
+                    w: l.polygon.normal(),
+                    cos_theta_o: 1.0,
+                    cos_theta_e: 0.0,
+                    two_sided: l.two_sided,
+                }
+            }
             Light::Point(l) => {
                 let phi = luminance(l.intensity).max(0.0);
                 LightBounds {

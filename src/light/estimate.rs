@@ -35,6 +35,24 @@ impl Light {
                 let cos_x = at.n.dot(d) / dist2.sqrt();
                 luminance(l.intensity) * cos_x.max(0.0) / dist2
             }
+            Light::Polygon(l) => {
+                // One sample of G at the vertex centroid (inside for convex polygons, a
+                // fair proxy otherwise; the adaptive floor covers the rest).
+                let v = l.polygon.vertices();
+                let c = v.iter().copied().sum::<Vec3>() / v.len() as f32;
+                let radiance = luminance(l.radiance);
+                let d = c - at.p;
+                let dist2 = d.length_squared();
+                let w = d / dist2.sqrt();
+                let n = l.polygon.normal();
+                let cos_y = if l.two_sided {
+                    n.dot(w).abs()
+                } else {
+                    (-n.dot(w)).max(0.0)
+                };
+                let cos_x = at.n.dot(w).max(0.0);
+                (radiance * l.polygon.area() * cos_x * cos_y / dist2).min(PI * radiance)
+            }
             Light::Area(l) => {
                 let radiance = luminance(l.radiance);
                 let (center, normal, area) = match &l.shape {

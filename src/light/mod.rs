@@ -8,12 +8,14 @@ pub mod cone;
 pub mod environment;
 mod estimate;
 mod point;
+mod polygon;
 pub mod select;
 
-pub use area::{AreaLight, LightSampling};
+pub use area::{AreaLight, EmitterKind, LightPoint, LightSampling, uniform_area_pdf};
 pub use bounds::LightBounds;
 pub use environment::Environment;
 pub use point::PointLight;
+pub use polygon::PolygonLight;
 
 use glam::{Vec2, Vec3};
 
@@ -71,6 +73,8 @@ pub enum Light {
     Point(PointLight),
     /// Light from infinitely far away: an environment map or a constant.
     Environment(Environment),
+    /// A diffuse emitter on a planar polygon (its geometry is its triangulation).
+    Polygon(PolygonLight),
 }
 
 impl Light {
@@ -94,6 +98,7 @@ impl Light {
                     normal: -w_in,
                 })
             }
+            Light::Polygon(l) => l.sample(at, u),
         }
     }
 
@@ -131,6 +136,7 @@ impl Light {
             Light::Area(l) => l.pdf(at, y, ny),
             Light::Point(_) => 0.0,
             Light::Environment(e) => e.pdf((y - at.p).normalize()),
+            Light::Polygon(l) => l.pdf(at, y, ny),
         }
     }
 
@@ -140,6 +146,7 @@ impl Light {
         match self {
             Light::Area(l) => l.emitted(ny, w),
             Light::Point(_) | Light::Environment(_) => Spectrum::ZERO,
+            Light::Polygon(l) => l.emitted(w),
         }
     }
 
@@ -149,6 +156,17 @@ impl Light {
             Light::Area(l) => l.power(),
             Light::Point(l) => l.power(),
             Light::Environment(e) => e.power(),
+            Light::Polygon(l) => l.power(),
+        }
+    }
+
+    /// Sets the sampling strategy of an area or polygon light (point lights have none).
+    /// The light uses the strategy of that name where its shape has one, else `area`.
+    pub fn set_sampling(&mut self, sampling: LightSampling) {
+        match self {
+            Light::Area(l) => l.sampling = sampling,
+            Light::Polygon(l) => l.sampling = sampling,
+            Light::Point(_) | Light::Environment(_) => {}
         }
     }
 

@@ -47,6 +47,8 @@ pub struct Control<'a> {
 
 /// Renders `scene` with `settings`.
 pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -> RenderOutput {
+    // The light-sampling strategy lives in the lights, where every estimator asks for it.
+    let scene = &*scene.with_light_sampling(settings.light_sampling);
     let camera = settings.camera(scene);
     let (w, h) = (camera.width, camera.height);
     let estimator =

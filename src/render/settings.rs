@@ -86,7 +86,7 @@ pub struct RenderSettings {
 
 impl RenderSettings {
     /// The defaults for `scene`: MIS (one light and one BSDF sample, power heuristic) with
-    /// uniform-area light sampling, light-BVH selection and the Sobol sampler at the
+    /// the best light sampling per shape, light-BVH selection and the Sobol sampler at the
     /// scene's spp, and the one-pixel box filter; a scene file's requests (filter, sampler,
     /// seed, MIS sample counts) replace these.
     pub fn for_scene(scene: &Scene) -> RenderSettings {
@@ -94,7 +94,7 @@ impl RenderSettings {
         RenderSettings {
             estimator: EstimatorKind::Mis,
             mis: asked.mis.unwrap_or_default(),
-            light_sampling: LightSampling::Area,
+            light_sampling: LightSampling::Best,
             light_select: LightSelect::Bvh,
             sampler: asked.sampler.unwrap_or(SamplerKind::Sobol),
             spp: scene.spp,

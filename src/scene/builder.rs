@@ -7,7 +7,7 @@ use super::{Requested, Scene, SceneError};
 use crate::bsdf::Material;
 use crate::geometry::shape::{Disk, Rectangle, Sphere, Triangle};
 use crate::geometry::{Geometry, Mesh, NO_LIGHT, Primitive, Shape};
-use crate::light::{AreaLight, Environment, Light, LightSampling, PointLight};
+use crate::light::{AreaLight, Environment, Light, LightSampling, PointLight, PolygonLight};
 use crate::math::Spectrum;
 use crate::render::camera::Camera;
 
@@ -40,6 +40,8 @@ pub struct SceneBuilder {
     lights: Vec<Light>,
     two_sided: Vec<bool>,
     textures: Vec<Option<MaterialTexture>>,
+    /// Problems found while adding shapes, reported by `build`.
+    errors: Vec<String>,
 }
 
 impl SceneBuilder {
@@ -53,6 +55,7 @@ impl SceneBuilder {
             lights: Vec::new(),
             two_sided: Vec::new(),
             textures: Vec::new(),
+            errors: Vec::new(),
         }
     }
 
@@ -89,7 +92,7 @@ impl SceneBuilder {
                     shape,
                     radiance: e.radiance,
                     two_sided: e.two_sided,
-                    sampling: LightSampling::Area,
+                    sampling: LightSampling::Best,
                 }));
                 self.lights.len() as u32 - 1
             }
@@ -185,6 +188,62 @@ impl SceneBuilder {
         self
     }
 
+    /// Adds a planar polygon (convex or concave, vertices in order; front side
+    /// right-handed with that order) as the mesh of its ear-clipped triangulation. With
+    /// emission it becomes one [`PolygonLight`] that all its triangles point to. An
+    /// invalid outline is reported when the scene is built.
+    pub fn polygon(
+        &mut self,
+        vertices: &[Vec3],
+        material: u32,
+        emission: Option<Emission>,
+    ) -> &mut Self {
+        let light = match PolygonLight::new(vertices, Spectrum::ZERO) {
+            Ok(l) => l,
+            Err(e) => {
+                self.errors.push(format!("polygon {vertices:?}: {e}"));
+                return self;
+            }
+        };
+        let n = light.polygon.normal();
+        // Each triangle wound like the polygon, so its normal is the emitting side.
+        let indices = light
+            .polygon
+            .triangles()
+            .iter()
+            .map(|&[a, b, c]| {
+                let (pa, pb, pc) = (vertices[a], vertices[b], vertices[c]);
+                if (pb - pa).cross(pc - pa).dot(n) >= 0.0 {
+                    [a as u32, b as u32, c as u32]
+                } else {
+                    [a as u32, c as u32, b as u32]
+                }
+            })
+            .collect();
+        let mesh = Mesh {
+            positions: vertices.to_vec(),
+            indices,
+            ..Mesh::default()
+        };
+        let light_index = match emission {
+            Some(e) => {
+                self.lights.push(Light::Polygon(PolygonLight {
+                    radiance: e.radiance,
+                    two_sided: e.two_sided,
+                    ..light
+                }));
+                self.lights.len() as u32 - 1
+            }
+            None => NO_LIGHT,
+        };
+        let first = self.prims.len();
+        self.mesh(mesh, material, None);
+        for p in &mut self.prims[first..] {
+            p.light = light_index;
+        }
+        self
+    }
+
     /// Adds a point light.
     pub fn point_light(&mut self, position: Vec3, intensity: Spectrum) -> &mut Self {
         self.lights.push(Light::Point(PointLight {
@@ -203,6 +262,9 @@ impl SceneBuilder {
     /// Validates and builds the scene (this builds the BVH).
     pub fn build(self, camera: Camera, spp: u32) -> Result<Scene, SceneError> {
         let err = |m: String| SceneError::new(self.name.clone(), None, m);
+        if let Some(e) = self.errors.first() {
+            return Err(err(e.clone()));
+        }
         for (i, p) in self.prims.iter().enumerate() {
             let b = p.shape.bounds();
             if !(b.min.is_finite() && b.max.is_finite()) || p.shape.area().is_nan() {

@@ -15,7 +15,9 @@ use crate::bsdf::Material;
 use crate::geometry::Geometry;
 use crate::image::Filter;
 use crate::integrator::MisSettings;
-use crate::light::Light;
+use std::borrow::Cow;
+
+use crate::light::{Light, LightSampling};
 use crate::render::camera::Camera;
 use crate::sampling::SamplerKind;
 use texture::MaterialTexture;
@@ -69,6 +71,24 @@ impl Scene {
             Some(i) => self.lights[i].infinite_radiance(w),
             None => crate::math::Spectrum::ZERO,
         }
+    }
+
+    /// This scene with every area and polygon light sampled by `sampling` (where a shape
+    /// lacks that strategy it uses `area`): borrowed when nothing changes, else a copy.
+    pub fn with_light_sampling(&self, sampling: LightSampling) -> Cow<'_, Scene> {
+        let unchanged = self.lights.iter().all(|l| match l {
+            Light::Area(a) => a.sampling == sampling,
+            Light::Polygon(p) => p.sampling == sampling,
+            Light::Point(_) | Light::Environment(_) => true,
+        });
+        if unchanged {
+            return Cow::Borrowed(self);
+        }
+        let mut scene = self.clone();
+        for light in &mut scene.lights {
+            light.set_sampling(sampling);
+        }
+        Cow::Owned(scene)
     }
 
     /// The texture on material `m`'s reflectance, if any.

@@ -3,3 +3,4 @@
 
 pub mod chi2;
 pub mod lambert;
+pub mod lights;

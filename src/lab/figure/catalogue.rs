@@ -61,9 +61,9 @@ pub const FIGURES: &[Figure] = &[
         name: "lights-shapes",
         description: "uniform area vs solid-angle sampling of a rectangle, a triangle and a polygon",
         kind: FigureKind::Panels(&[
-            shape_panel("rectangle", "builtin:rectangle-light"),
-            shape_panel("triangle", "builtin:triangle-light"),
-            shape_panel("polygon", "builtin:polygon-light"),
+            shape_panel("rectangle", "builtin:sphere-near-plane?emitters=rectangle"),
+            shape_panel("triangle", "builtin:sphere-near-plane?emitters=mesh"),
+            shape_panel("polygon", "builtin:sphere-near-plane?emitters=polygon"),
         ]),
     },
     Figure {

@@ -99,6 +99,11 @@ impl Polygon {
         self.frame.n
     }
 
+    /// The vertices in order (world space).
+    pub fn vertices(&self) -> &[Vec3] {
+        &self.vertices
+    }
+
     /// The ear-clipping triangulation as vertex index triples.
     pub fn triangles(&self) -> &[[usize; 3]] {
         &self.triangles

@@ -3,6 +3,7 @@
 mod assignment;
 mod envmap;
 pub mod shirley100;
+pub mod sphere_near_plane;
 mod veach_mis;
 
 use super::{Scene, SceneError};
@@ -23,6 +24,11 @@ pub const BUILTINS: &[Builtin] = &[
         name: "assignment",
         description: "one small area light over diffuse and Phong (n = 10, 100, 1000) spheres: hemisphere vs BRDF vs light sampling",
         build: assignment::build,
+    },
+    Builtin {
+        name: "sphere-near-plane",
+        description: "a sphere light just above a diffuse floor, a grazing rectangle light and an emitting octahedron: where G varies most",
+        build: sphere_near_plane::build,
     },
     Builtin {
         name: "veach-mis",
@@ -67,12 +73,17 @@ pub fn build(name: &str) -> Result<Scene, SceneError> {
     }
 }
 
-/// `NAME?key=value`: only `many-lights?n=N` takes a parameter.
+/// `NAME?key=value`: `many-lights?n=N` (luminaire count) and
+/// `sphere-near-plane?emitters=A,B` (a subset of sphere, rectangle, mesh, polygon).
 fn build_with_query(spec: &str, base: &str, query: &str) -> Result<Scene, SceneError> {
     let err = |m: String| SceneError::new(format!("builtin:{spec}"), None, m);
+    if base == "sphere-near-plane" {
+        return near_plane_with_query(query).map_err(err);
+    }
     if base != "many-lights" {
         return Err(err(format!(
-            "built-in scene \"{base}\" takes no parameters (only many-lights?n=N does)"
+            "built-in scene \"{base}\" takes no parameters (only many-lights?n=N and \
+             sphere-near-plane?emitters=LIST do)"
         )));
     }
     let Some(value) = query.strip_prefix("n=") else {
@@ -89,6 +100,28 @@ fn build_with_query(spec: &str, base: &str, query: &str) -> Result<Scene, SceneE
     shirley100::build_many(n)
 }
 
+/// `sphere-near-plane?emitters=rectangle,polygon`: the floor and camera with only the
+/// named emitters, to measure one shape's strategies at a time.
+fn near_plane_with_query(query: &str) -> Result<Scene, String> {
+    use sphere_near_plane::NearPlaneEmitter as E;
+    let list = query.strip_prefix("emitters=").ok_or_else(|| {
+        format!("unknown parameter \"{query}\": expected emitters=LIST, e.g. emitters=sphere,mesh")
+    })?;
+    let emitters = list
+        .split(',')
+        .map(|name| match name.trim() {
+            "sphere" => Ok(E::Sphere),
+            "rectangle" => Ok(E::Rectangle),
+            "mesh" => Ok(E::Mesh),
+            "polygon" => Ok(E::Polygon),
+            other => Err(format!(
+                "unknown emitter \"{other}\" (known: sphere, rectangle, mesh, polygon)"
+            )),
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    sphere_near_plane::build_with(&emitters).map_err(|e| e.to_string())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -98,6 +131,8 @@ mod tests {
         let scene = build("many-lights?n=250").expect("scene");
         assert_eq!(scene.lights.len(), 250);
         assert_eq!(build("shirley-100").expect("scene").lights.len(), 100);
+        let one = build("sphere-near-plane?emitters=polygon").expect("scene");
+        assert_eq!(one.lights.len(), 1);
         for bad in [
             "many-lights?n=0",
             "many-lights?n=-3",
@@ -105,6 +140,8 @@ mod tests {
             "many-lights?n=2000000",
             "many-lights?m=3",
             "assignment?n=3",
+            "sphere-near-plane?emitters=cube",
+            "sphere-near-plane?n=3",
         ] {
             let e = build(bad).expect_err(bad);
             assert!(e.to_string().contains("many-lights") || e.to_string().contains("n"));

@@ -1,0 +1,89 @@
+//! Triangle emitters (and so each triangle of an emitting mesh): `area` (uniform point by
+//! folding, as on the lecture's slide) and `solid-angle` (uniform direction in the
+//! spherical triangle, Arvo 1995). Solid-angle sampling falls back to `area` where the
+//! spherical triangle is numerically unsafe: smaller than
+//! [`MIN_SOLID_ANGLE`](crate::sampling::warp::MIN_SOLID_ANGLE) (far or edge-on: the
+//! constructor returns `None`) or within [`MAX_SOLID_ANGLE_FRACTION`] of a hemisphere (the
+//! shading point almost on the triangle, where its vertices are nearly coplanar with it).
+//! The choice depends only on the shading point, so `sample` and `pdf` agree on it.
+
+use glam::{Vec2, Vec3};
+
+use super::{LightPoint, LightSampling, hit_plane, uniform_area_pdf};
+use crate::geometry::shape::Triangle;
+use crate::light::ShadingPoint;
+use crate::math::PI;
+use crate::sampling::warp::{SphericalTriangle, square_to_triangle_fold};
+
+/// Spherical triangles above this fraction of 2π are sampled by area instead.
+pub const MAX_SOLID_ANGLE_FRACTION: f32 = 0.999;
+
+/// The spherical triangle (p0, p1, p2) seen from `x`, when solid-angle sampling is safe.
+#[inline]
+pub(crate) fn safe_spherical_triangle(
+    x: Vec3,
+    p0: Vec3,
+    p1: Vec3,
+    p2: Vec3,
+) -> Option<SphericalTriangle> {
+    SphericalTriangle::new(x, p0, p1, p2)
+        .filter(|st| st.solid_angle() <= MAX_SOLID_ANGLE_FRACTION * 2.0 * PI)
+}
+
+/// The spherical triangle of `t` seen from `x`, when solid-angle sampling applies there.
+#[inline]
+fn spherical(t: &Triangle, strategy: LightSampling, x: Vec3) -> Option<SphericalTriangle> {
+    if strategy != LightSampling::SolidAngle {
+        return None;
+    }
+    let [p0, p1, p2] = t.vertices();
+    safe_spherical_triangle(x, p0, p1, p2)
+}
+
+/// A uniform point of `t` by folding the unit square onto the triangle, and its normal.
+#[inline]
+pub(super) fn sample_area(t: &Triangle, u: Vec2) -> (Vec3, Vec3) {
+    let b = square_to_triangle_fold(u);
+    (t.p0 + b.x * t.e1 + b.y * t.e2, t.normal())
+}
+
+/// Draws a point of `t` with `strategy` (resolved: `area` or `solid-angle`).
+#[inline]
+pub(super) fn sample(
+    t: &Triangle,
+    strategy: LightSampling,
+    at: &ShadingPoint,
+    u: Vec2,
+) -> Option<LightPoint> {
+    let ny = t.normal();
+    match spherical(t, strategy, at.p) {
+        Some(st) => {
+            let (w, pdf) = st.sample(u);
+            let y = hit_plane(at.p, w, t.p0, ny)?;
+            Some(LightPoint { y, ny, pdf })
+        }
+        None => {
+            let (y, ny) = sample_area(t, u);
+            Some(LightPoint {
+                y,
+                ny,
+                pdf: uniform_area_pdf(at.p, y, ny, t.area()),
+            })
+        }
+    }
+}
+
+/// Density per steradian at `at` of the direction towards `y` on `t`.
+#[inline]
+pub(super) fn pdf(
+    t: &Triangle,
+    strategy: LightSampling,
+    at: &ShadingPoint,
+    y: Vec3,
+    ny: Vec3,
+) -> f32 {
+    match spherical(t, strategy, at.p) {
+        Some(st) => 1.0 / st.solid_angle(),
+        None => uniform_area_pdf(at.p, y, ny, t.area()),
+    }
+}
