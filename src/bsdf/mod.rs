@@ -5,11 +5,25 @@
 //! Directions are in the local shading frame (normal = +z) and both point away from the
 //! surface. Knows nothing of lights or the renderer.
 
+pub mod coat;
+mod conductor;
+mod conductor_ior;
 mod diffuse;
+pub mod fresnel;
+pub mod microfacet;
 mod phong;
+mod plastic;
+mod rough_conductor;
+mod rough_plastic;
 
+pub use conductor::Conductor;
+pub use conductor_ior::ConductorMaterial;
 pub use diffuse::Diffuse;
+pub use microfacet::{Microfacet, MicrofacetType};
 pub use phong::Phong;
+pub use plastic::Plastic;
+pub use rough_conductor::RoughConductor;
+pub use rough_plastic::{AIR_IOR, POLYPROPYLENE_IOR, PlasticParams, RoughPlastic};
 
 use glam::{Vec2, Vec3};
 
@@ -63,6 +77,12 @@ pub trait Bsdf {
     fn is_delta(&self) -> bool {
         false
     }
+
+    /// True when some lobe is a Dirac delta (`sample` may return `delta: true` samples,
+    /// which `eval` and `pdf` do not cover). Default: [`Bsdf::is_delta`].
+    fn has_delta_lobe(&self) -> bool {
+        self.is_delta()
+    }
 }
 
 /// The closed set of materials a scene can use: one `match` forwards each call.
@@ -72,6 +92,14 @@ pub enum Material {
     Diffuse(Diffuse),
     /// Energy-normalised modified Phong.
     Phong(Phong),
+    /// Smooth conductor: a mirror (Dirac lobe).
+    Conductor(Conductor),
+    /// Microfacet conductor.
+    RoughConductor(RoughConductor),
+    /// Smooth dielectric coat (Dirac lobe) over a diffuse base.
+    Plastic(Plastic),
+    /// Rough dielectric coat over a diffuse base.
+    RoughPlastic(RoughPlastic),
 }
 
 macro_rules! forward {
@@ -79,6 +107,10 @@ macro_rules! forward {
         match $self {
             Material::Diffuse($m) => $e,
             Material::Phong($m) => $e,
+            Material::Conductor($m) => $e,
+            Material::RoughConductor($m) => $e,
+            Material::Plastic($m) => $e,
+            Material::RoughPlastic($m) => $e,
         }
     };
 }
@@ -101,6 +133,10 @@ impl Bsdf for Material {
 
     fn is_delta(&self) -> bool {
         forward!(self, m => m.is_delta())
+    }
+
+    fn has_delta_lobe(&self) -> bool {
+        forward!(self, m => m.has_delta_lobe())
     }
 }
 

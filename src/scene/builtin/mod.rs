@@ -2,6 +2,7 @@
 
 mod assignment;
 mod envmap;
+mod materials;
 pub mod shirley100;
 pub mod sphere_near_plane;
 mod veach_mis;
@@ -49,6 +50,11 @@ pub const BUILTINS: &[Builtin] = &[
         name: "many-lights",
         description: "the shirley-100 generator with N luminaires: many-lights?n=N, 1 ≤ N ≤ 10⁶ (default 1000)",
         build: shirley100::build_default_many,
+    },
+    Builtin {
+        name: "materials",
+        description: "smooth and rough conductors and plastics (Mitsuba 3's models) under one area light",
+        build: materials::build,
     },
 ];
 
