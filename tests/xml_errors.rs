@@ -227,7 +227,7 @@ fn garbage_and_mutated_scenes_never_panic() {
 }
 
 #[test]
-fn mitsuba_06_phong_maps_to_ours_and_microfacets_say_not_yet() {
+fn mitsuba_06_phong_maps_to_ours_and_bad_microfacet_parameters_are_errors() {
     let text = format!(
         "<scene version=\"0.6.0\">\n{SENSOR}\n<shape type=\"sphere\"><bsdf type=\"phong\">\
          <float name=\"exponent\" value=\"80\"/><rgb name=\"diffuseReflectance\" value=\"0.1 0.2 0.3\"/>\
@@ -242,8 +242,19 @@ fn mitsuba_06_phong_maps_to_ours_and_microfacets_say_not_yet() {
         }
         other => panic!("phong became {other:?}"),
     }
-    let e = load(&scene_text_with("<bsdf type=\"roughplastic\"/>")).unwrap_err();
-    assert!(e.to_string().contains("not yet supported"), "{e}");
+    let e = load(&scene_text_with(
+        "<bsdf type=\"roughplastic\"><string name=\"distribution\" value=\"phong\"/></bsdf>",
+    ))
+    .unwrap_err();
+    assert!(
+        e.to_string().contains("unknown microfacet distribution"),
+        "{e}"
+    );
+    let e = load(&scene_text_with(
+        "<bsdf type=\"conductor\"><string name=\"material\" value=\"Unobtainium\"/></bsdf>",
+    ))
+    .unwrap_err();
+    assert!(e.to_string().contains("Unobtainium"), "{e}");
 }
 
 fn scene_text_with(bsdf: &str) -> String {

@@ -91,13 +91,13 @@ const CASES: &[(&str, &str, Option<&str>)] = &[
     ),
     (
         "microfacet_conductor",
-        "roughconductor (ggx, beckmann anisotropic), conductor",
-        Some("roughconductor/conductor arrive with the bsdf branch"),
+        "roughconductor (ggx + Au, beckmann + Al + specular_reflectance), conductor (Cu)",
+        None,
     ),
     (
         "microfacet_plastic",
-        "roughplastic, plastic",
-        Some("roughplastic/plastic arrive with the bsdf branch"),
+        "roughplastic (alpha, int_ior), plastic",
+        None,
     ),
 ];
 

@@ -100,6 +100,8 @@ impl MaterialTexture {
                 p.kd = r;
                 Material::Phong(p)
             }
+            // The loader binds textures to diffuse and Phong reflectances only.
+            other => other.clone(),
         }
     }
 }

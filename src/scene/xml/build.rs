@@ -9,6 +9,7 @@ use glam::{Mat3, Vec3};
 
 use super::XmlError;
 use super::bitmap::load_bitmap;
+use super::microfacet;
 use super::props::Props;
 use super::sensor::{build_integrator, build_sensor};
 use super::shapes;
@@ -158,9 +159,12 @@ impl<'a> Context<'a> {
                 }
             }
             "conductor" | "roughconductor" | "plastic" | "roughplastic" => {
-                return Err(el.error(format!(
-                    "BSDF \"{ty}\" is not yet supported (it arrives with the microfacet BSDFs)"
-                )));
+                let m = microfacet::build(ty, el, &p)?;
+                (
+                    m.ok_or_else(|| el.error("unreachable BSDF type"))?,
+                    false,
+                    None,
+                )
             }
             other => {
                 return Err(el.error(format!(

@@ -6,6 +6,7 @@
 
 mod bitmap;
 mod build;
+mod microfacet;
 mod props;
 mod sensor;
 mod shapes;
