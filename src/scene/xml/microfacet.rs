@@ -26,7 +26,7 @@ fn roughness(el: &Element, p: &Props<'_>) -> Result<(MicrofacetType, f32), XmlEr
             "anisotropic roughness (alpha_u {au}, alpha_v {av}) is not supported"
         )));
     }
-    if !(au >= 0.0) {
+    if au.is_nan() || au < 0.0 {
         return Err(el.error(format!("alpha must be ≥ 0, not {au}")));
     }
     p.ignore("sample_visible");
