@@ -11,7 +11,7 @@
 //! | [`integrator`] | direct-lighting estimators (hemisphere, rejection, cosine, bsdf, light) |
 //! | [`render`] | camera, render settings, parallel tile loop |
 //! | [`image`] | film (Welford statistics), EXR/PNG/PFM io, error metrics |
-//! | [`scene`] | scene builder, built-in scenes, located errors |
+//! | [`scene`] | scene builder, built-in scenes, Mitsuba XML loader, mesh files, textures, located errors |
 //! | [`lab`] | experiments: references, equal-spp/equal-time comparisons, convergence plots, HTML reports, the lecture's figures, pass merging |
 //! | [`cli`] | the command line, one file per subcommand |
 #![warn(missing_docs)]

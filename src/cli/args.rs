@@ -117,3 +117,11 @@ impl StrategyArgs {
         Ok(s)
     }
 }
+
+/// Parses `-D NAME=VALUE`.
+pub fn parse_define(s: &str) -> Result<(String, String), String> {
+    match s.split_once('=') {
+        Some((n, v)) if !n.trim().is_empty() => Ok((n.trim().to_owned(), v.to_owned())),
+        _ => Err(format!("expected NAME=VALUE, not \"{s}\"")),
+    }
+}

@@ -20,6 +20,9 @@ use crate::scene;
 pub struct ReferenceArgs {
     /// The scene: `builtin:NAME`.
     pub scene: String,
+    /// Set a scene file parameter: `-D spp=64` replaces `<default name="spp" .../>`.
+    #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = super::args::parse_define)]
+    pub define: Vec<(String, String)>,
     #[command(flatten)]
     pub strategy: StrategyArgs,
     /// Stop when the relative standard error of the image mean and of 90% of the pixels
@@ -73,7 +76,7 @@ pub fn run(args: &ReferenceArgs) -> Result<(), CliError> {
         }
         _ => {}
     }
-    let scene = scene::load(&args.scene).map_err(CliError::input)?;
+    let scene = scene::load_with(&args.scene, &args.define).map_err(CliError::input)?;
     let settings = args.strategy.settings(&scene)?;
     install_stop_handler();
     let bar = ProgressBar::new_spinner();

@@ -14,8 +14,12 @@ use crate::scene::{self, builtin::DEFAULT_SCENE};
 /// Arguments of `render`.
 #[derive(Args, Debug)]
 pub struct RenderArgs {
-    /// A scene: `builtin:NAME` (see `lightlab scenes`). Default: builtin:assignment.
+    /// A scene: a Mitsuba XML file or `builtin:NAME` (see `lightlab scenes`). Default:
+    /// builtin:assignment.
     pub scene: Option<String>,
+    /// Set a scene file parameter: `-D spp=64` replaces `<default name="spp" .../>`.
+    #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = super::args::parse_define)]
+    pub define: Vec<(String, String)>,
     #[command(flatten)]
     pub strategy: StrategyArgs,
     /// Worker threads (default: all cores). The image is the same for any count.
@@ -56,7 +60,7 @@ pub fn progress_bar(total: u64) -> ProgressBar {
 /// Runs `render`.
 pub fn run(args: &RenderArgs) -> Result<(), CliError> {
     let spec = args.scene.as_deref().unwrap_or(DEFAULT_SCENE);
-    let scene = scene::load(spec).map_err(CliError::input)?;
+    let scene = scene::load_with(spec, &args.define).map_err(CliError::input)?;
     let settings = args.strategy.settings(&scene)?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads.unwrap_or(0))

@@ -1,5 +1,13 @@
 //! Per-pixel sample statistics by Welford's running mean and variance (Welford 1962),
 //! with Chan et al.'s pairwise merge (1979) so passes can be combined exactly.
+//!
+//! Samples carry a weight: 1 for the one-pixel box filter (plain Welford), the
+//! reconstruction filter's value for wider filters (West 1979, weighted running mean and
+//! variance). With weights the pixel value is the ratio Σ wᵢxᵢ / Σ wᵢ (as Mitsuba's film
+//! develops it), `sample_variance` is the reliability-weighted variance
+//! Σ wᵢ(xᵢ − x̄)² / (W − W₂/W), and `variance_of_mean` is that times W₂/W² (W = Σ wᵢ,
+//! W₂ = Σ wᵢ²): the variance of the weighted mean as if the samples were independent.
+//! Neighbouring pixels then share samples, so their errors are correlated.
 
 use crate::math::Spectrum;
 
@@ -10,8 +18,12 @@ pub struct PixelStats {
     pub count: u32,
     /// Running mean.
     pub mean: Spectrum,
-    /// Sum of squared deviations from the mean (Welford's M2).
+    /// Sum of (weighted) squared deviations from the mean (Welford's M2).
     pub m2: Spectrum,
+    /// Sum of the sample weights W (equals `count` with unit weights).
+    pub weight: f32,
+    /// Sum of the squared sample weights W₂ (equals `count` with unit weights).
+    pub weight2: f32,
 }
 
 impl PixelStats {
@@ -22,39 +34,71 @@ impl PixelStats {
         let delta = x - self.mean;
         self.mean += delta / self.count as f32;
         self.m2 += delta * (x - self.mean);
+        self.weight = self.count as f32;
+        self.weight2 = self.count as f32;
+    }
+
+    /// Adds one sample with weight `w` > 0 (West 1979).
+    #[inline]
+    pub fn add_weighted(&mut self, x: Spectrum, w: f32) {
+        self.count += 1;
+        self.weight += w;
+        self.weight2 += w * w;
+        let delta = x - self.mean;
+        self.mean += delta * (w / self.weight);
+        self.m2 += delta * (x - self.mean) * w;
+    }
+
+    /// True when every sample had weight 1.
+    fn unit_weights(&self) -> bool {
+        self.weight == self.count as f32 && self.weight2 == self.weight
     }
 
     /// Combines two sets of statistics as if all samples had been added to one
     /// (Chan, Golub & LeVeque 1979).
     pub fn merge(&self, o: &PixelStats) -> PixelStats {
         let n = self.count + o.count;
-        if n == 0 {
+        let (wa, wb) = (self.weight, o.weight);
+        let w = wa + wb;
+        if n == 0 || w <= 0.0 {
             return PixelStats::default();
         }
-        let (na, nb) = (self.count as f32, o.count as f32);
         let delta = o.mean - self.mean;
         PixelStats {
             count: n,
-            mean: self.mean + delta * (nb / n as f32),
-            m2: self.m2 + o.m2 + delta * delta * (na * nb / n as f32),
+            mean: self.mean + delta * (wb / w),
+            m2: self.m2 + o.m2 + delta * delta * (wa * wb / w),
+            weight: w,
+            weight2: self.weight2 + o.weight2,
         }
     }
 
-    /// Unbiased sample variance of one sample (zero with fewer than two samples).
+    /// Unbiased sample variance of one sample (zero with fewer than two samples):
+    /// M2 / (n − 1), or M2 / (W − W₂/W) with weights.
     pub fn sample_variance(&self) -> Spectrum {
         if self.count < 2 {
-            Spectrum::ZERO
+            return Spectrum::ZERO;
+        }
+        if self.unit_weights() {
+            return self.m2 / (self.count - 1) as f32;
+        }
+        let dof = self.weight - self.weight2 / self.weight;
+        if dof > 0.0 {
+            self.m2 / dof
         } else {
-            self.m2 / (self.count - 1) as f32
+            Spectrum::ZERO
         }
     }
 
-    /// Variance of the pixel's mean: sample variance / count.
+    /// Variance of the pixel's mean: sample variance / n, or sample variance · W₂/W²
+    /// with weights (1/W₂·W² is Kish's effective sample size).
     pub fn variance_of_mean(&self) -> Spectrum {
         if self.count < 2 {
             Spectrum::ZERO
-        } else {
+        } else if self.unit_weights() {
             self.sample_variance() / self.count as f32
+        } else {
+            self.sample_variance() * (self.weight2 / (self.weight * self.weight))
         }
     }
 }
@@ -131,5 +175,38 @@ mod tests {
         let m = a.merge(&b);
         assert_eq!(m.count, all.count);
         assert!((m.mean - all.mean).length() < 1e-5 && (m.m2 - all.m2).length() < 1e-3);
+    }
+
+    #[test]
+    fn weighted_stats_match_direct_formulas_and_merge() {
+        let xs: Vec<(f32, f32)> = (0..40)
+            .map(|i| {
+                (
+                    ((i * 13 % 7) as f32).cos() * 2.0,
+                    0.1 + (i % 5) as f32 * 0.3,
+                )
+            })
+            .collect();
+        let (mut all, mut a, mut b) = (
+            PixelStats::default(),
+            PixelStats::default(),
+            PixelStats::default(),
+        );
+        for (i, &(x, w)) in xs.iter().enumerate() {
+            all.add_weighted(Spectrum::splat(x), w);
+            let part: &mut PixelStats = if i < 11 { &mut a } else { &mut b };
+            part.add_weighted(Spectrum::splat(x), w);
+        }
+        let w: f32 = xs.iter().map(|p| p.1).sum();
+        let w2: f32 = xs.iter().map(|p| p.1 * p.1).sum();
+        let mean = xs.iter().map(|p| p.0 * p.1).sum::<f32>() / w;
+        let m2 = xs.iter().map(|p| p.1 * (p.0 - mean).powi(2)).sum::<f32>();
+        assert!((all.mean.x - mean).abs() < 1e-5);
+        let var = m2 / (w - w2 / w);
+        assert!((all.sample_variance().x - var).abs() < 1e-4 * var.max(1.0));
+        assert!((all.variance_of_mean().x - var * w2 / (w * w)).abs() < 1e-5);
+        let m = a.merge(&b);
+        assert!((m.mean - all.mean).length() < 1e-5 && (m.m2 - all.m2).length() < 1e-3);
+        assert_eq!(m.count, 40);
     }
 }

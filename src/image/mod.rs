@@ -2,7 +2,9 @@
 //! input/output (EXR with variance, PNG, PFM), and error metrics against a reference.
 
 pub mod film;
+pub mod filter;
 pub mod io;
 pub mod metrics;
 
 pub use film::{Film, PixelStats};
+pub use filter::Filter;

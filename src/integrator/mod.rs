@@ -16,7 +16,7 @@ use crate::bsdf::Bsdf;
 use crate::geometry::{NO_LIGHT, Ray, SurfaceHit};
 use crate::light::ShadingPoint;
 use crate::light::select::{LightSelect, Selector};
-use crate::math::Spectrum;
+use crate::math::{Frame, Spectrum};
 use crate::sampling::Uniform;
 use crate::scene::Scene;
 
@@ -83,7 +83,24 @@ impl Estimator {
         w_out: Vec3,
         src: &mut impl Uniform,
     ) -> Spectrum {
-        let material = &scene.materials[hit.material as usize];
+        let mut material = &scene.materials[hit.material as usize];
+        let textured;
+        if let Some(t) = scene.texture(hit.material) {
+            textured = t.apply(material, hit.uv);
+            material = &textured;
+        }
+        let flipped;
+        let hit = if w_out.dot(hit.ng) < 0.0 && scene.is_two_sided(hit.material) {
+            // Mitsuba's `twosided`: the back face is shaded like the front one.
+            flipped = SurfaceHit {
+                ng: -hit.ng,
+                frame: Frame::from_normal(-hit.frame.n),
+                ..*hit
+            };
+            &flipped
+        } else {
+            hit
+        };
         let w_out_local = hit.frame.to_local(w_out);
         if w_out_local.z <= 0.0 || w_out.dot(hit.ng) <= 0.0 {
             return Spectrum::ZERO; // seen from behind: one-sided BSDFs reflect nothing

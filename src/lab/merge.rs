@@ -47,6 +47,10 @@ pub fn film_from_image(image: &LoadedImage, path: &Path) -> Result<Film, MergeEr
             } else {
                 var * 0.0
             },
+            // Unit sample weights: exact for the one-pixel box filter; for wider filters
+            // (weighted pixels) the parts are combined by sample count, an approximation.
+            weight: n,
+            weight2: n,
         })
         .collect();
     Ok(Film {

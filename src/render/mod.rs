@@ -6,13 +6,14 @@ mod settings;
 
 pub use settings::{Pass, RenderSettings};
 
+use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
-use glam::Vec2;
+use glam::{DVec3, Vec2};
 use rayon::prelude::*;
 
-use crate::image::{Film, PixelStats};
+use crate::image::{Film, Filter, PixelStats};
 use crate::integrator::Estimator;
 use crate::math::Spectrum;
 use crate::sampling::{Sampler, Uniform};
@@ -63,42 +64,27 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
     let mut stopped = false;
     for window in rounds.windows(2) {
         let (s0, s1) = (window[0], window[1]);
-        let results: Vec<Vec<PixelStats>> = tiles
-            .par_iter()
-            .map(|&(x0, y0, x1, y1)| {
-                let mut out = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
-                for y in y0..y1 {
-                    for x in x0..x1 {
-                        let mut stats = *film.pixel(x, y);
-                        let pixel = (y * w + x) as u64;
-                        for s in s0..s1 {
-                            let mut sampler = Sampler::new(
-                                settings.sampler,
-                                settings.seed,
-                                pixel,
-                                s,
-                                settings.spp,
-                            );
-                            let p = Vec2::new(x as f32, y as f32) + sampler.next_2d();
-                            let l = estimator.radiance(scene, &camera.ray(p), &mut sampler);
-                            stats.add(if l.is_finite() {
-                                l
-                            } else {
-                                invalid.fetch_add(1, Ordering::Relaxed);
-                                Spectrum::ZERO
-                            });
-                        }
-                        out.push(stats);
-                    }
-                }
-                out
-            })
-            .collect();
-        for (&(x0, y0, x1, _), tile) in tiles.iter().zip(results) {
-            for (i, stats) in tile.into_iter().enumerate() {
-                let (x, y) = (x0 + i as u32 % (x1 - x0), y0 + i as u32 / (x1 - x0));
-                film.pixels[(y * w + x) as usize] = stats;
+        let sample = |x: u32, y: u32, s: u32| -> (Vec2, Spectrum) {
+            let mut sampler = Sampler::new(
+                settings.sampler,
+                settings.seed,
+                (y * w + x) as u64,
+                s,
+                settings.spp,
+            );
+            let p = Vec2::new(x as f32, y as f32) + sampler.next_2d();
+            let l = estimator.radiance(scene, &camera.ray(p), &mut sampler);
+            if l.is_finite() {
+                (p, l)
+            } else {
+                invalid.fetch_add(1, Ordering::Relaxed);
+                (p, Spectrum::ZERO)
             }
+        };
+        if settings.filter.is_pixel_box() {
+            round_pixel_box(&mut film, &tiles, s0..s1, &sample);
+        } else {
+            round_splatted(&mut film, &tiles, s0..s1, settings.filter, &sample);
         }
         done = s1;
         (control.progress)((s1 - first) as u64 * (w * h) as u64, total);
@@ -116,8 +102,145 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
     }
 }
 
+/// One round with the one-pixel box filter: each pixel continues its own Welford
+/// statistics with its samples `samples`.
+fn round_pixel_box(
+    film: &mut Film,
+    tiles: &[Tile],
+    samples: Range<u32>,
+    sample: &(dyn Fn(u32, u32, u32) -> (Vec2, Spectrum) + Sync),
+) {
+    let w = film.width;
+    let results: Vec<Vec<PixelStats>> = tiles
+        .par_iter()
+        .map(|&(x0, y0, x1, y1)| {
+            let mut out = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
+            for y in y0..y1 {
+                for x in x0..x1 {
+                    let mut stats = *film.pixel(x, y);
+                    for s in samples.clone() {
+                        stats.add(sample(x, y, s).1);
+                    }
+                    out.push(stats);
+                }
+            }
+            out
+        })
+        .collect();
+    for (&(x0, y0, x1, _), tile) in tiles.iter().zip(results) {
+        for (i, stats) in tile.into_iter().enumerate() {
+            let (x, y) = (x0 + i as u32 % (x1 - x0), y0 + i as u32 / (x1 - x0));
+            film.pixels[(y * w + x) as usize] = stats;
+        }
+    }
+}
+
+/// One round with a wider filter: each tile splats its samples into a buffer that
+/// covers the tile and the filter's reach, and the buffers are merged into the film in
+/// tile order (Chan's merge), so the image does not depend on the thread count.
+fn round_splatted(
+    film: &mut Film,
+    tiles: &[Tile],
+    samples: Range<u32>,
+    filter: Filter,
+    sample: &(dyn Fn(u32, u32, u32) -> (Vec2, Spectrum) + Sync),
+) {
+    let (w, h) = (film.width, film.height);
+    let reach = filter.radius().ceil() as u32;
+    let results: Vec<(Tile, Vec<Splats>)> = tiles
+        .par_iter()
+        .map(|&(x0, y0, x1, y1)| {
+            let bx0 = x0.saturating_sub(reach);
+            let by0 = y0.saturating_sub(reach);
+            let (bx1, by1) = ((x1 + reach).min(w), (y1 + reach).min(h));
+            let bw = bx1 - bx0;
+            let mut buf = vec![Splats::default(); (bw * (by1 - by0)) as usize];
+            for y in y0..y1 {
+                for x in x0..x1 {
+                    for s in samples.clone() {
+                        let (p, l) = sample(x, y, s);
+                        let (xl, xh) = filter.footprint(p.x, w);
+                        let (yl, yh) = filter.footprint(p.y, h);
+                        // Separable weights, evaluated once per axis.
+                        let mut wx = [0.0f32; MAX_FOOTPRINT];
+                        for (k, px) in (xl..=xh).enumerate().take(MAX_FOOTPRINT) {
+                            wx[k] = filter.eval(px as f32 + 0.5 - p.x);
+                        }
+                        for py in yl..=yh {
+                            let wy = filter.eval(py as f32 + 0.5 - p.y);
+                            if wy <= 0.0 {
+                                continue;
+                            }
+                            let row = (py as u32 - by0) * bw;
+                            for (k, px) in (xl..=xh).enumerate().take(MAX_FOOTPRINT) {
+                                let wt = wy * wx[k];
+                                if wt > 0.0 {
+                                    buf[(row + px as u32 - bx0) as usize].add(l, wt);
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+            ((bx0, by0, bx1, by1), buf)
+        })
+        .collect();
+    for ((bx0, by0, bx1, _), buf) in results {
+        for (i, splats) in buf.into_iter().enumerate() {
+            if splats.count == 0 {
+                continue;
+            }
+            let stats = splats.stats();
+            let (x, y) = (bx0 + i as u32 % (bx1 - bx0), by0 + i as u32 / (bx1 - bx0));
+            let px = &mut film.pixels[(y * w + x) as usize];
+            *px = px.merge(&stats);
+        }
+    }
+}
+
+/// Weighted sums of one pixel's splats within a tile and round, in f64 so the variance
+/// from sums (M2 = Σw·x² − (Σw·x)²/W) keeps its precision; cheaper per splat than a
+/// weighted Welford update, and turned into [`PixelStats`] once per round.
+#[derive(Clone, Copy, Default)]
+struct Splats {
+    count: u32,
+    w: f64,
+    w2: f64,
+    sum: DVec3,
+    sum2: DVec3,
+}
+
+impl Splats {
+    #[inline]
+    fn add(&mut self, x: Spectrum, w: f32) {
+        let (x, w) = (x.as_dvec3(), w as f64);
+        self.count += 1;
+        self.w += w;
+        self.w2 += w * w;
+        self.sum += w * x;
+        self.sum2 += w * x * x;
+    }
+
+    fn stats(&self) -> PixelStats {
+        let mean = self.sum / self.w;
+        PixelStats {
+            count: self.count,
+            mean: mean.as_vec3(),
+            m2: (self.sum2 - self.sum * mean).max(DVec3::ZERO).as_vec3(),
+            weight: self.w as f32,
+            weight2: self.w2 as f32,
+        }
+    }
+}
+
+/// Most pixels a filter reaches along one axis (radius ≤ 16, as `Filter::validate` checks).
+const MAX_FOOTPRINT: usize = 33;
+
+/// A rectangle of pixels (x0, y0, x1, y1), half-open.
+type Tile = (u32, u32, u32, u32);
+
 /// Tiles (x0, y0, x1, y1) covering the image, row by row.
-fn tiles(w: u32, h: u32) -> Vec<(u32, u32, u32, u32)> {
+fn tiles(w: u32, h: u32) -> Vec<Tile> {
     let mut t = Vec::new();
     for y in (0..h).step_by(TILE as usize) {
         for x in (0..w).step_by(TILE as usize) {

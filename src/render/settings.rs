@@ -4,6 +4,7 @@
 use std::fmt;
 use std::str::FromStr;
 
+use crate::image::Filter;
 use crate::integrator::{EstimatorKind, MisSettings};
 use crate::light::LightSampling;
 use crate::light::select::LightSelect;
@@ -79,23 +80,28 @@ pub struct RenderSettings {
     pub resolution: Option<(u32, u32)>,
     /// Which share of the samples to render.
     pub pass: Pass,
+    /// Pixel reconstruction filter (the one-pixel box unless a scene file asks).
+    pub filter: Filter,
 }
 
 impl RenderSettings {
     /// The defaults for `scene`: MIS (one light and one BSDF sample, power heuristic) with
     /// the best light sampling per shape, light-BVH selection and the Sobol sampler at the
-    /// scene's spp.
+    /// scene's spp, and the one-pixel box filter; a scene file's requests (filter, sampler,
+    /// seed, MIS sample counts) replace these.
     pub fn for_scene(scene: &Scene) -> RenderSettings {
+        let asked = &scene.requested;
         RenderSettings {
             estimator: EstimatorKind::Mis,
-            mis: MisSettings::default(),
+            mis: asked.mis.unwrap_or_default(),
             light_sampling: LightSampling::Best,
             light_select: LightSelect::Bvh,
-            sampler: SamplerKind::Sobol,
+            sampler: asked.sampler.unwrap_or(SamplerKind::Sobol),
             spp: scene.spp,
-            seed: 0,
+            seed: asked.seed.unwrap_or(0),
             resolution: None,
             pass: Pass::WHOLE,
+            filter: asked.filter,
         }
     }
 

@@ -2,7 +2,8 @@
 
 use glam::Vec3;
 
-use super::{Scene, SceneError};
+use super::texture::MaterialTexture;
+use super::{Requested, Scene, SceneError};
 use crate::bsdf::Material;
 use crate::geometry::shape::{Disk, Rectangle, Sphere, Triangle};
 use crate::geometry::{Geometry, Mesh, NO_LIGHT, Primitive, Shape};
@@ -37,6 +38,8 @@ pub struct SceneBuilder {
     meshes: Vec<Mesh>,
     materials: Vec<Material>,
     lights: Vec<Light>,
+    two_sided: Vec<bool>,
+    textures: Vec<Option<MaterialTexture>>,
     /// Problems found while adding shapes, reported by `build`.
     errors: Vec<String>,
 }
@@ -50,6 +53,8 @@ impl SceneBuilder {
             meshes: Vec::new(),
             materials: Vec::new(),
             lights: Vec::new(),
+            two_sided: Vec::new(),
+            textures: Vec::new(),
             errors: Vec::new(),
         }
     }
@@ -58,6 +63,25 @@ impl SceneBuilder {
     pub fn material(&mut self, m: Material) -> u32 {
         self.materials.push(m);
         self.materials.len() as u32 - 1
+    }
+
+    /// Marks material `m` as reflecting from both sides (Mitsuba's `twosided`: a hit
+    /// seen from behind is shaded with the normal flipped).
+    pub fn set_two_sided(&mut self, m: u32) -> &mut Self {
+        if self.two_sided.len() <= m as usize {
+            self.two_sided.resize(m as usize + 1, false);
+        }
+        self.two_sided[m as usize] = true;
+        self
+    }
+
+    /// Textures material `m`'s reflectance.
+    pub fn set_texture(&mut self, m: u32, texture: MaterialTexture) -> &mut Self {
+        if self.textures.len() <= m as usize {
+            self.textures.resize(m as usize + 1, None);
+        }
+        self.textures[m as usize] = Some(texture);
+        self
     }
 
     /// Adds a shape; if it emits, it also becomes a light.
@@ -282,6 +306,9 @@ impl SceneBuilder {
             lights,
             environment,
             spp,
+            two_sided: self.two_sided,
+            requested: Requested::default(),
+            textures: self.textures,
         })
     }
 }

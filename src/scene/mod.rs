@@ -4,16 +4,23 @@
 pub mod builder;
 pub mod builtin;
 mod error;
+pub mod mesh_io;
+pub mod texture;
+pub mod xml;
 
 pub use builder::SceneBuilder;
 pub use error::SceneError;
 
 use crate::bsdf::Material;
 use crate::geometry::Geometry;
+use crate::image::Filter;
+use crate::integrator::MisSettings;
 use std::borrow::Cow;
 
 use crate::light::{Light, LightSampling};
 use crate::render::camera::Camera;
+use crate::sampling::SamplerKind;
+use texture::MaterialTexture;
 
 /// A scene ready to render.
 #[derive(Clone, Debug)]
@@ -32,6 +39,27 @@ pub struct Scene {
     pub environment: Option<usize>,
     /// Default samples per pixel.
     pub spp: u32,
+    /// Materials that reflect from both sides (Mitsuba's `twosided`), by material index;
+    /// missing entries are one-sided.
+    pub two_sided: Vec<bool>,
+    /// Render settings the scene file asks for.
+    pub requested: Requested,
+    /// Reflectance textures, by material index; missing entries are untextured.
+    pub textures: Vec<Option<MaterialTexture>>,
+}
+
+/// Render settings a scene file asks for; `None` leaves the renderer's default. Command-
+/// line flags override them.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Requested {
+    /// Pixel reconstruction filter (default: the one-pixel box).
+    pub filter: Filter,
+    /// Random number source.
+    pub sampler: Option<SamplerKind>,
+    /// Seed.
+    pub seed: Option<u64>,
+    /// MIS sample counts and heuristic.
+    pub mis: Option<MisSettings>,
 }
 
 impl Scene {
@@ -62,16 +90,73 @@ impl Scene {
         }
         Cow::Owned(scene)
     }
+
+    /// The texture on material `m`'s reflectance, if any.
+    #[inline]
+    pub fn texture(&self, m: u32) -> Option<&MaterialTexture> {
+        self.textures.get(m as usize).and_then(Option::as_ref)
+    }
+
+    /// True when material `m` reflects from both sides.
+    #[inline]
+    pub fn is_two_sided(&self, m: u32) -> bool {
+        self.two_sided.get(m as usize).copied().unwrap_or(false)
+    }
 }
 
-/// Loads `builtin:NAME` (the only source until scene files land).
+/// Loads `builtin:NAME` or a Mitsuba XML file (warnings go to stderr).
 pub fn load(spec: &str) -> Result<Scene, SceneError> {
+    load_with(spec, &[])
+}
+
+/// Loads `builtin:NAME` or a Mitsuba XML file with `-D name=value` definitions; the
+/// loader's located warnings are printed to stderr. A file may also carry definitions
+/// in its name, as built-in scenes carry parameters: `scene.xml?spp=64&fov=30` (used
+/// when no file has that exact name), so every command that takes a scene can set them.
+pub fn load_with(spec: &str, defines: &[(String, String)]) -> Result<Scene, SceneError> {
     match spec.strip_prefix("builtin:") {
-        Some(name) => builtin::build(name),
-        None => Err(SceneError::new(
-            spec,
-            None,
-            "scene files are not supported yet; use builtin:NAME",
-        )),
+        Some(name) => {
+            if !defines.is_empty() {
+                return Err(SceneError::new(
+                    spec,
+                    None,
+                    "-D applies to scene files only",
+                ));
+            }
+            builtin::build(name)
+        }
+        None => {
+            let (path, mut all) = split_defines(spec)?;
+            all.extend_from_slice(defines);
+            let loaded = xml::load(std::path::Path::new(path), &all)?;
+            for w in &loaded.warnings {
+                eprintln!("warning: {w}");
+            }
+            Ok(loaded.scene)
+        }
+    }
+}
+
+/// `-D name=value` pairs.
+pub type Defines = Vec<(String, String)>;
+
+/// `file.xml?a=1&b=2` → (`file.xml`, [(a, 1), (b, 2)]) unless a file is named `spec`.
+fn split_defines(spec: &str) -> Result<(&str, Defines), SceneError> {
+    match spec.split_once('?') {
+        Some((path, query)) if !std::path::Path::new(spec).exists() => {
+            let defines = query
+                .split('&')
+                .map(|kv| match kv.split_once('=') {
+                    Some((k, v)) if !k.is_empty() => Ok((k.to_owned(), v.to_owned())),
+                    _ => Err(SceneError::new(
+                        spec,
+                        None,
+                        format!("bad parameter \"{kv}\" (expected NAME=VALUE)"),
+                    )),
+                })
+                .collect::<Result<_, _>>()?;
+            Ok((path, defines))
+        }
+        _ => Ok((spec, Vec::new())),
     }
 }

@@ -1,0 +1,252 @@
+//! Shapes: Mitsuba's analytic shapes (`sphere`, `rectangle`, `disk`, `cube`) and meshes
+//! (`obj`, `ply`, `serialized`) placed by `to_world`, with `flip_normals`, `face_normals`,
+//! a BSDF (nested or by ref; default diffuse 0.5) and an optional `area` emitter.
+
+use glam::{Mat3, Mat4, Vec3};
+
+use super::XmlError;
+use super::build::Context;
+use super::props::Props;
+use super::tree::Element;
+use crate::geometry::Mesh;
+use crate::geometry::shape::{Disk, Rectangle, Shape, Sphere};
+use crate::math::Spectrum;
+use crate::scene::builder::Emission;
+use crate::scene::mesh_io;
+
+/// Shape types this loader knows.
+const SHAPES: [&str; 7] = [
+    "obj",
+    "ply",
+    "serialized",
+    "rectangle",
+    "sphere",
+    "disk",
+    "cube",
+];
+
+/// Relative tolerance for "uniform scale" and "perpendicular" checks.
+const TOLERANCE: f32 = 1e-4;
+
+/// Adds a `<shape>` to the scene.
+pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlError> {
+    let ty = el.required("type")?;
+    let p = Props::new(el)?;
+    let mut material = None;
+    let mut emission = None;
+    for c in p.nested() {
+        let c = ctx.resolve(c)?;
+        match c.tag.as_str() {
+            "bsdf" => {
+                if material.is_some() {
+                    return Err(c.error("a shape takes one BSDF"));
+                }
+                material = Some(ctx.material(c)?);
+            }
+            "emitter" => {
+                if emission.is_some() {
+                    return Err(c.error("a shape takes one emitter"));
+                }
+                emission = Some(area_emitter(ctx, c)?);
+            }
+            other => return Err(c.error(format!("unexpected <{other}> inside <shape>"))),
+        }
+    }
+    let material = match material {
+        Some(m) => m,
+        None => ctx.default_material(),
+    };
+    let to_world = p.transform("to_world")?;
+    let flip = p.bool("flip_normals", false)?;
+    let linear = Mat3::from_mat4(to_world);
+    if linear.determinant().abs() < 1e-12 {
+        return Err(el.error("to_world is singular"));
+    }
+    // Normals transform by the inverse transpose (as Mitsuba's Transform does).
+    let normal_matrix = linear.inverse().transpose();
+    match ty {
+        "sphere" => {
+            let center = p.vec3("center", Vec3::ZERO)?;
+            let radius = p.float("radius", 1.0)?;
+            let scale = uniform_scale(linear).ok_or_else(|| {
+                el.error("a sphere's to_world must be a uniform scale, rotation and translation")
+            })?;
+            if flip {
+                return Err(el.error("flip_normals on a sphere is not supported"));
+            }
+            let r = (radius * scale).abs();
+            if r.is_nan() || r <= 0.0 {
+                return Err(el.error(format!("radius must be positive, not {radius}")));
+            }
+            let sphere = Sphere {
+                center: to_world.transform_point3(center),
+                radius: r,
+            };
+            ctx.builder.shape(Shape::Sphere(sphere), material, emission);
+        }
+        "rectangle" => {
+            let corner = |x: f32, y: f32| to_world.transform_point3(Vec3::new(x, y, 0.0));
+            let o = corner(-1.0, -1.0);
+            let (mut ea, mut eb) = (corner(1.0, -1.0) - o, corner(-1.0, 1.0) - o);
+            let n = (normal_matrix * Vec3::Z) * if flip { -1.0 } else { 1.0 };
+            if ea.cross(eb).dot(n) < 0.0 {
+                std::mem::swap(&mut ea, &mut eb);
+            }
+            match Rectangle::new(o, ea, eb) {
+                Some(r) => {
+                    ctx.builder.shape(Shape::Rectangle(r), material, emission);
+                }
+                // A sheared rectangle is a parallelogram: two triangles.
+                None => {
+                    let mesh = Mesh {
+                        positions: vec![o, o + ea, o + ea + eb, o + eb],
+                        indices: vec![[0, 1, 2], [0, 2, 3]],
+                        ..Mesh::default()
+                    };
+                    ctx.builder.mesh(mesh, material, emission);
+                }
+            }
+        }
+        "disk" => {
+            let (ex, ey) = (linear * Vec3::X, linear * Vec3::Y);
+            let radius = ex.length();
+            if (ey.length() - radius).abs() > TOLERANCE * radius
+                || ex.dot(ey).abs() > TOLERANCE * radius * radius
+            {
+                return Err(el.error("a disk's to_world must scale x and y equally (no ellipses)"));
+            }
+            let n = (normal_matrix * Vec3::Z).normalize() * if flip { -1.0 } else { 1.0 };
+            let disk = Disk {
+                center: to_world.transform_point3(Vec3::ZERO),
+                normal: n,
+                radius,
+            };
+            ctx.builder.shape(Shape::Disk(disk), material, emission);
+        }
+        "cube" => {
+            let mesh = transform_mesh(cube(), to_world, flip);
+            ctx.builder.mesh(mesh, material, emission);
+        }
+        "obj" | "ply" | "serialized" => {
+            let file = p.string("filename", "")?;
+            if file.is_empty() {
+                return Err(el.error("missing <string name=\"filename\">"));
+            }
+            let path = el.dir.join(&file);
+            let mesh = match ty {
+                "obj" => mesh_io::load_obj(&path),
+                "ply" => mesh_io::load_ply(&path),
+                _ => {
+                    let index = p.count("shape_index", 0, u32::MAX)?;
+                    mesh_io::load_serialized(&path, index)
+                }
+            }
+            .map_err(|e| el.error(e))?;
+            let mut mesh = mesh;
+            if p.bool("face_normals", false)? {
+                mesh.normals.clear();
+            } else if mesh.normals.is_empty() {
+                // Mitsuba 3 smooths meshes that come without normals.
+                mesh_io::compute_vertex_normals(&mut mesh);
+            }
+            // Mitsuba flips OBJ texture coordinates by default (v → 1 − v), so that
+            // v = 0 is the image's top row.
+            if ty == "obj" && p.bool("flip_tex_coords", true)? {
+                for uv in mesh.uvs.iter_mut() {
+                    uv.y = 1.0 - uv.y;
+                }
+            }
+            let mesh = transform_mesh(mesh, to_world, flip);
+            ctx.builder.mesh(mesh, material, emission);
+        }
+        other => {
+            return Err(el.error(format!(
+                "unknown shape type \"{other}\" (known: {})",
+                SHAPES.join(", ")
+            )));
+        }
+    }
+    ctx.finish(&p);
+    Ok(())
+}
+
+/// `<emitter type="area">` inside a shape.
+fn area_emitter<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<Emission, XmlError> {
+    let ty = el.required("type")?;
+    if ty != "area" {
+        return Err(el.error(format!(
+            "only an area emitter can be nested in a shape, not \"{ty}\""
+        )));
+    }
+    let p = Props::new(el)?;
+    let radiance = p.emission("radiance", Spectrum::ONE)?;
+    ctx.finish(&p);
+    Ok(Emission::new(radiance))
+}
+
+/// The scale s when `m` = s · rotation.
+fn uniform_scale(m: Mat3) -> Option<f32> {
+    let s = m.x_axis.length();
+    let cols = [m.x_axis, m.y_axis, m.z_axis];
+    let ok = cols.iter().all(|c| (c.length() - s).abs() <= TOLERANCE * s)
+        && cols[0].dot(cols[1]).abs() <= TOLERANCE * s * s
+        && cols[0].dot(cols[2]).abs() <= TOLERANCE * s * s
+        && cols[1].dot(cols[2]).abs() <= TOLERANCE * s * s;
+    ok.then_some(s)
+}
+
+/// Applies `to_world` (positions; normals by the inverse transpose) and `flip_normals`
+/// (reversed winding and negated normals).
+fn transform_mesh(mut mesh: Mesh, to_world: Mat4, flip: bool) -> Mesh {
+    let normal_matrix = Mat3::from_mat4(to_world).inverse().transpose();
+    for p in mesh.positions.iter_mut() {
+        *p = to_world.transform_point3(*p);
+    }
+    let sign = if flip { -1.0 } else { 1.0 };
+    for n in mesh.normals.iter_mut() {
+        *n = (normal_matrix * *n).normalize_or_zero() * sign;
+    }
+    if flip {
+        for t in mesh.indices.iter_mut() {
+            t.swap(1, 2);
+        }
+    }
+    mesh
+}
+
+/// Mitsuba's `cube`: [−1, 1]³ as 12 triangles with outward faces.
+fn cube() -> Mesh {
+    let mut mesh = Mesh::default();
+    for axis in 0..3 {
+        for sign in [-1.0f32, 1.0] {
+            let n = Vec3::from_array(std::array::from_fn(|i| if i == axis { sign } else { 0.0 }));
+            let u = Vec3::from_array(std::array::from_fn(|i| (i == (axis + 1) % 3) as u8 as f32));
+            let v = n.cross(u);
+            let base = mesh.positions.len() as u32;
+            for (a, b) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+                mesh.positions.push(n + a * u + b * v);
+            }
+            // u × v = n, so the winding (0, 1, 2) faces outward.
+            mesh.indices.push([base, base + 1, base + 2]);
+            mesh.indices.push([base, base + 2, base + 3]);
+        }
+    }
+    mesh
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cube_faces_point_outward() {
+        let m = cube();
+        assert_eq!(m.indices.len(), 12);
+        for t in &m.indices {
+            let [a, b, c] = t.map(|i| m.positions[i as usize]);
+            let n = (b - a).cross(c - a);
+            let centre = (a + b + c) / 3.0;
+            assert!(n.dot(centre) > 0.0);
+        }
+    }
+}

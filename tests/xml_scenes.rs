@@ -1,0 +1,242 @@
+//! Conformance of the Mitsuba XML loader: every scene in `tests/scenes/` rendered by
+//! lightlab must agree with Mitsuba 3's reference (`tests/scenes/refs/`, made by
+//! `tests/scenes/make_refs.py`) within noise.
+//!
+//! The render is split into `PASSES` independent seeds; the spread of each 8×8 block's
+//! mean over the passes gives its standard error whatever the pixel filter (wide filters
+//! correlate neighbouring pixels, so per-pixel variances would understate it). Each
+//! block's Student t statistic (PASSES − 1 degrees of freedom) is tested two-sided at a
+//! Šidák-corrected 1% level over the blocks, as Mitsuba's own render tests do, and the
+//! image mean must be within 1% of the reference's. The reference's own noise enters the
+//! standard error through the variance channels `make_refs.py` stores (from 8 passes).
+
+use std::path::PathBuf;
+
+use lightlab::image::io::read_image;
+use lightlab::image::metrics::compare;
+use lightlab::math::Spectrum;
+use lightlab::render::{RenderSettings, render_quiet};
+use lightlab::scene::xml;
+use statrs::distribution::{ContinuousCDF, StudentsT};
+
+/// Independent renders per scene.
+const PASSES: u64 = 12;
+/// Samples per pixel of each pass.
+const SPP: u32 = 24;
+/// Side of a test block in pixels.
+const BLOCK: u32 = 8;
+/// Family-wise level per scene.
+const ALPHA: f64 = 0.01;
+
+/// (scene, plugins it covers, reason to skip until a feature lands).
+const CASES: &[(&str, &str, Option<&str>)] = &[
+    (
+        "cbox_diffuse",
+        "direct, rectangle, sphere, area, diffuse, id/ref, box, independent, $spp",
+        None,
+    ),
+    (
+        "gaussian_stratified",
+        "hdrfilm default gaussian, stratified + seed, shading_samples, near_clip, sphere center/radius/to_world, scale x/y/z, spectrum, default bsdf",
+        None,
+    ),
+    (
+        "tent_point",
+        "tent, multijitter, point (position, to_world), cube, fov_axis y, rotate",
+        None,
+    ),
+    (
+        "disk_twosided",
+        "disk, twosided, named ref, flip_normals (rectangle, disk emitter), emitter_samples 2",
+        None,
+    ),
+    (
+        "mesh_obj",
+        "obj (quads, smoothed normals), face_normals, path max_depth 2",
+        None,
+    ),
+    (
+        "mesh_ply_serialized",
+        "ply binary (normals, uv), serialized (shape_index 0/1), emitting mesh",
+        None,
+    ),
+    (
+        "path_include",
+        "include, default + $name, float reflectance, matrix 4x4 and 3x3, gaussian stddev, ldsampler, fov_axis diagonal",
+        None,
+    ),
+    (
+        "legacy_v06",
+        "version 0.6 upgrade (toWorld, sampleCount, fovAxis, nearClip, emitterSamples, bsdfSamples), scale x=-1 camera, bsdf_samples 2",
+        None,
+    ),
+    (
+        "textures_bitmap",
+        "bitmap PNG (sRGB, nearest, to_uv) by ref, JPEG (bilinear, clamp) in twosided on an OBJ with uv (flip_tex_coords), EXR (mirror)",
+        None,
+    ),
+    (
+        "envmap_rotated",
+        "envmap (EXR, scale, to_world rotation), disk",
+        Some(
+            "Environment::lookup puts texel column i at u = i/W; Mitsuba 3 puts it at \
+             u = (i + 0.5)/W (a probe of mi envmap.eval: column 3 of 8 peaks at u = 0.4375), \
+             so the sun turns by half a texel; un-skip when light/environment is fixed",
+        ),
+    ),
+    (
+        "constant_env",
+        "constant (uniform spectrum = illuminant E), bsdf_samples 3, gaussian on 48x48, stratified",
+        None,
+    ),
+    (
+        "microfacet_conductor",
+        "roughconductor (ggx + Au, beckmann + Al + specular_reflectance), conductor (Cu)",
+        None,
+    ),
+    (
+        "microfacet_plastic",
+        "roughplastic (alpha, int_ior), plastic",
+        None,
+    ),
+];
+
+fn dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/scenes")
+}
+
+/// Per-block variance of the mean of a reference from its per-pixel variances: channels
+/// taken as fully correlated (an upper bound), pixels as independent (exact for the box
+/// filter).
+fn block_variances(variance: &[Spectrum], w: u32, h: u32) -> Vec<f64> {
+    let per_pixel: Vec<Spectrum> = variance
+        .iter()
+        .map(|v| {
+            let sd = v.max(Spectrum::ZERO).to_array().map(f32::sqrt);
+            // Var((R + G + B)/3) with fully correlated channels.
+            Spectrum::splat(((sd[0] + sd[1] + sd[2]) / 3.0).powi(2))
+        })
+        .collect();
+    // The block mean of n independent pixels: Var = Σ var / n² = (mean var) / n.
+    let n = (BLOCK * BLOCK) as f64;
+    block_means(&per_pixel, w, h)
+        .into_iter()
+        .map(|v| v / n)
+        .collect()
+}
+
+/// Per-block means of one image.
+fn block_means(rgb: &[Spectrum], w: u32, h: u32) -> Vec<f64> {
+    let (bw, bh) = (w.div_ceil(BLOCK), h.div_ceil(BLOCK));
+    let mut sums = vec![(0.0f64, 0u32); (bw * bh) as usize];
+    for y in 0..h {
+        for x in 0..w {
+            let b = ((y / BLOCK) * bw + x / BLOCK) as usize;
+            sums[b].0 += rgb[(y * w + x) as usize].element_sum() as f64 / 3.0;
+            sums[b].1 += 1;
+        }
+    }
+    sums.iter().map(|(s, n)| s / *n as f64).collect()
+}
+
+/// Renders `name` in passes and checks it; returns a table row or the failure.
+fn check(name: &str) -> Result<String, String> {
+    let path = dir().join(format!("{name}.xml"));
+    let loaded = xml::load(&path, &[]).map_err(|e| e.to_string())?;
+    let scene = loaded.scene;
+    let reference =
+        read_image(&dir().join("refs").join(format!("{name}.exr"))).map_err(|e| e.to_string())?;
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    if (reference.width, reference.height) != (w, h) {
+        return Err(format!(
+            "{name}: reference is {}x{}, scene {w}x{h}",
+            reference.width, reference.height
+        ));
+    }
+    let mut passes = Vec::new();
+    let mut total = vec![Spectrum::ZERO; (w * h) as usize];
+    for k in 0..PASSES {
+        let mut s = RenderSettings::for_scene(&scene);
+        s.spp = SPP;
+        s.seed = 1000 + k;
+        let means = render_quiet(&scene, &s).film.means();
+        for (t, m) in total.iter_mut().zip(&means) {
+            *t += *m / PASSES as f32;
+        }
+        passes.push(block_means(&means, w, h));
+    }
+    let refs = block_means(&reference.rgb, w, h);
+    let ref_vars = match &reference.variance {
+        Some(v) => block_variances(v, w, h),
+        None => vec![0.0; refs.len()],
+    };
+    let blocks = refs.len();
+    let alpha = 1.0 - (1.0 - ALPHA).powf(1.0 / blocks as f64);
+    let t = StudentsT::new(0.0, 1.0, (PASSES - 1) as f64).map_err(|e| e.to_string())?;
+    let n = PASSES as f64;
+    let mut worst = (1.0f64, 0usize);
+    for b in 0..blocks {
+        let xs: Vec<f64> = passes.iter().map(|p| p[b]).collect();
+        let mean = xs.iter().sum::<f64>() / n;
+        let var = xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0);
+        // The test's standard error and the reference's own noise.
+        let se = (var / n + ref_vars[b]).sqrt();
+        let diff = mean - refs[b];
+        let p = if se > 0.0 {
+            2.0 * (1.0 - t.cdf((diff / se).abs()))
+        } else if diff.abs() <= 1e-4 * (1.0 + refs[b].abs()) {
+            1.0
+        } else {
+            0.0
+        };
+        if p < worst.0 {
+            worst = (p, b);
+        }
+    }
+    let report = compare(&total, None, &reference.rgb, None);
+    let mean_test: f64 = total.iter().map(|c| c.element_sum() as f64).sum();
+    let mean_ref: f64 = reference.rgb.iter().map(|c| c.element_sum() as f64).sum();
+    let bias = mean_test / mean_ref - 1.0;
+    let row = format!(
+        "{name:<22} relMSE {:.3e}  mean bias {:+.3}%  min block p {:.2e} (block {}, level {:.1e})",
+        report.rel_mse,
+        100.0 * bias,
+        worst.0,
+        worst.1,
+        alpha
+    );
+    if worst.0 < alpha {
+        return Err(format!("{row}: block {} disagrees with Mitsuba", worst.1));
+    }
+    if bias.abs() > 0.01 {
+        return Err(format!("{row}: image mean off by more than 1%"));
+    }
+    if let Some(warning) = loaded.warnings.first() {
+        return Err(format!("{name}: unexpected loader warning: {warning}"));
+    }
+    Ok(row)
+}
+
+#[test]
+fn scenes_match_mitsuba_references() {
+    let mut failures = Vec::new();
+    for &(name, plugins, skip) in CASES {
+        if let Some(reason) = skip {
+            println!("{name:<22} SKIPPED: {reason}");
+            continue;
+        }
+        match check(name) {
+            Ok(row) => println!("{row}  [{plugins}]"),
+            Err(e) => {
+                println!("FAIL {e}");
+                failures.push(e);
+            }
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} scene(s) disagree:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
