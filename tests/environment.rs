@@ -206,10 +206,10 @@ fn environment_maps_load_from_exr_and_hdr() {
         .expect("write hdr");
     for (path, tolerance) in [(exr, 1e-6), (hdr, 1e-2)] {
         let env = Environment::from_file(&path, 2.0, Mat3::IDENTITY).expect("load");
-        // Texel (3, 1) sits at u = 3/8, v = 1/3: direction (sin θ sin φ, cos θ, −sin θ cos φ).
+        // Texel (3, 1) sits at u = 3.5/8, v = 1/3: direction (sin θ sin φ, cos θ, −sin θ cos φ).
         let (theta, phi) = (
             std::f32::consts::PI / 3.0,
-            2.0 * std::f32::consts::PI * 3.0 / 8.0,
+            2.0 * std::f32::consts::PI * 3.5 / 8.0,
         );
         let d = Vec3::new(
             theta.sin() * phi.sin(),

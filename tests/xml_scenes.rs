@@ -78,11 +78,7 @@ const CASES: &[(&str, &str, Option<&str>)] = &[
     (
         "envmap_rotated",
         "envmap (EXR, scale, to_world rotation), disk",
-        Some(
-            "Environment::lookup puts texel column i at u = i/W; Mitsuba 3 puts it at \
-             u = (i + 0.5)/W (a probe of mi envmap.eval: column 3 of 8 peaks at u = 0.4375), \
-             so the sun turns by half a texel; un-skip when light/environment is fixed",
-        ),
+        None,
     ),
     (
         "constant_env",

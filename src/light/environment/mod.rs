@@ -3,8 +3,9 @@
 //!
 //! Conventions follow Mitsuba 3's `envmap`: in the emitter's local frame +y is up; the
 //! direction ω = (sin θ sin φ, cos θ, −sin θ cos φ) has image coordinates u = φ/2π,
-//! v = θ/π; texel (i, j) of a W×H image sits at (u, v) = (i/W, j/(H−1)) — the first column
-//! repeats after the last — and radiance is interpolated bilinearly between texels.
+//! v = θ/π; texel (i, j) of a W×H image sits at (u, v) = ((i + ½)/W, j/(H−1)) — columns
+//! wrap around in u, rows end at the poles — and radiance is interpolated bilinearly
+//! between texels (checked against Mitsuba 3.9's `envmap.eval`).
 //!
 //! Sampling (pbrt-v4 §12.5; Mitsuba 3 `envmap`): a piecewise-constant 2D distribution over
 //! the W×(H−1) cells between texels, each weighted by the exact mean of the bilinear
@@ -114,19 +115,24 @@ impl LatLongImage {
         self.texels[j * self.width + i % self.width]
     }
 
-    /// Bilinear radiance at (u, v) between texels at (i/W, j/(H−1)).
+    /// Bilinear radiance at (u, v) between texels at ((i + ½)/W, j/(H−1)).
     #[inline]
     pub fn lookup(&self, uv: Vec2) -> Spectrum {
-        let x = uv.x * self.width as f32;
+        let x = uv.x * self.width as f32 - 0.5;
         let y = (uv.y * (self.height - 1) as f32).clamp(0.0, (self.height - 1) as f32);
-        let (i, j) = (
-            x.floor().max(0.0) as usize,
-            (y.floor() as usize).min(self.height - 2),
-        );
-        let (fx, fy) = (x - i as f32, y - j as f32);
+        let x0 = x.floor();
+        let i = (x0 as isize).rem_euclid(self.width as isize) as usize;
+        let j = (y.floor() as usize).min(self.height - 2);
+        let (fx, fy) = (x - x0, y - j as f32);
         let top = self.texel(i, j) * (1.0 - fx) + self.texel(i + 1, j) * fx;
         let bottom = self.texel(i, j + 1) * (1.0 - fx) + self.texel(i + 1, j + 1) * fx;
         top * (1.0 - fy) + bottom * fy
+    }
+
+    /// Half a texel in u: cell i of the sampling grid spans u ∈ [(i + ½)/W, (i + 3/2)/W).
+    #[inline]
+    fn half_texel(&self) -> f32 {
+        0.5 / self.width as f32
     }
 
     /// Sampling weights of the W×(H−1) cells: mean luminance over the cell times the
@@ -224,8 +230,13 @@ impl Environment {
                 let (w, pdf) = square_to_uniform_sphere(u);
                 Some((w, *l * self.scale, pdf))
             }
-            Radiance::Map { distribution, .. } => {
-                let (uv, pdf_uv) = distribution.sample(u);
+            Radiance::Map {
+                image,
+                distribution,
+            } => {
+                let (cell, pdf_uv) = distribution.sample(u);
+                let x = cell.x + image.half_texel();
+                let uv = Vec2::new(x - x.floor(), cell.y);
                 let (local, sin_t) = uv_to_direction(uv);
                 if sin_t <= 0.0 || pdf_uv <= 0.0 {
                     return None;
@@ -245,14 +256,20 @@ impl Environment {
     pub fn pdf(&self, w: Vec3) -> f32 {
         match &self.radiance {
             Radiance::Constant(_) => uniform_sphere_pdf(w),
-            Radiance::Map { distribution, .. } => {
+            Radiance::Map {
+                image,
+                distribution,
+            } => {
                 let local = self.to_local * w;
                 // sin θ from the horizontal components: accurate near the poles.
                 let sin_t = (local.x * local.x + local.z * local.z).sqrt();
                 if sin_t <= 0.0 {
                     return 0.0;
                 }
-                distribution.pdf(direction_to_uv(local)) / (2.0 * PI * PI * sin_t)
+                let uv = direction_to_uv(local);
+                let x = uv.x - image.half_texel();
+                let cell = Vec2::new(x - x.floor(), uv.y);
+                distribution.pdf(cell) / (2.0 * PI * PI * sin_t)
             }
         }
     }
@@ -302,10 +319,13 @@ mod tests {
     fn bilinear_lookup_hits_texels_and_wraps() {
         let texels = (0..8).map(|i| Spectrum::splat(i as f32)).collect();
         let img = LatLongImage::new(4, 2, texels).expect("image");
-        assert_eq!(img.lookup(Vec2::new(0.25, 0.0)), Spectrum::splat(1.0));
-        assert_eq!(img.lookup(Vec2::new(0.5, 1.0)), Spectrum::splat(6.0));
-        // Between the last column (3) and the first (0) of the top row.
-        assert_eq!(img.lookup(Vec2::new(0.875, 0.0)), Spectrum::splat(1.5));
+        assert_eq!(img.lookup(Vec2::new(0.375, 0.0)), Spectrum::splat(1.0));
+        assert_eq!(img.lookup(Vec2::new(0.625, 1.0)), Spectrum::splat(6.0));
+        // Between the last column (3) and the first (0) of the top row, on either side
+        // of u = 0.
+        assert_eq!(img.lookup(Vec2::new(0.0, 0.0)), Spectrum::splat(1.5));
+        let near_one = img.lookup(Vec2::new(0.99, 0.0)).x;
+        assert!((near_one - 3.0 * (1.0 - 0.46)).abs() < 1e-4, "{near_one}");
     }
 
     #[test]

@@ -49,7 +49,7 @@ impl Default for SkyParameters {
 }
 
 /// Renders the sky into a lat-long image. Texel (i, j) takes the radiance of the direction
-/// at its own (u, v) = (i/W, j/(H−1)); sun texels are supersampled 8×8 over the texel's
+/// at its own (u, v) = ((i + ½)/W, j/(H−1)); sun texels are supersampled 8×8 over the texel's
 /// footprint so the small disk keeps its power.
 pub fn procedural_sky(p: &SkyParameters) -> LatLongImage {
     let (w, h) = (p.width.max(4), (p.width / 2).max(3));
@@ -68,7 +68,7 @@ pub fn procedural_sky(p: &SkyParameters) -> LatLongImage {
     let mut texels = Vec::with_capacity(w * h);
     for j in 0..h {
         for i in 0..w {
-            let uv = Vec2::new(i as f32 / w as f32, j as f32 / (h - 1) as f32);
+            let uv = Vec2::new((i as f32 + 0.5) / w as f32, j as f32 / (h - 1) as f32);
             let (d, _) = uv_to_direction(uv);
             // Average over the texel's footprint where the sun is near.
             let near_sun = d.dot(sun) > (p.sun_radius_degrees.to_radians() + 0.05).cos();
