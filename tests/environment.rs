@@ -3,6 +3,9 @@
 //! irradiance π·L from a constant environment (as a constant and as a map) on an unoccluded
 //! plane, and agreement of light, BSDF and MIS renders of `envmap` per pixel block.
 
+mod common;
+use common::blocks::{block_z, blocks, worst};
+
 use glam::{Mat3, Vec3};
 use lightlab::bsdf::{Diffuse, Material};
 use lightlab::geometry::Ray;
@@ -134,25 +137,6 @@ fn render_envmap(kind: EstimatorKind, spp: u32, seed: u64) -> Film {
     film
 }
 
-/// Per 16×16 block: the sum of pixel means (RGB summed) and its variance.
-fn blocks(film: &Film) -> Vec<(f64, f64)> {
-    let mut out = Vec::new();
-    for by in (0..film.height).step_by(16) {
-        for bx in (0..film.width).step_by(16) {
-            let (mut m, mut v) = (0f64, 0f64);
-            for y in by..(by + 16).min(film.height) {
-                for x in bx..(bx + 16).min(film.width) {
-                    let p = film.pixel(x, y);
-                    m += p.mean.element_sum() as f64;
-                    v += p.variance_of_mean().element_sum() as f64;
-                }
-            }
-            out.push((m, v));
-        }
-    }
-    out
-}
-
 /// Light sampling is heavy-tailed on the glossy spheres (it spends its samples on the sun
 /// while the lobe reflects the sky), so its blocks sit up to about 3 standard errors from
 /// the reference at 1024 spp with no bias found by 4·10⁶-sample pixel checks; hence 2048.
@@ -166,11 +150,7 @@ fn envmap_light_bsdf_and_mis_agree() {
         (EstimatorKind::Mis, 512),
     ] {
         let test = blocks(&render_envmap(kind, spp, 10 + kind as u64));
-        let worst = test
-            .iter()
-            .zip(&reference)
-            .map(|(a, r)| (a.0 - r.0) / (a.1 + r.1).sqrt().max(1e-9))
-            .fold(0f64, |w, z| if z.abs() > w.abs() { z } else { w });
+        let worst = worst(&block_z(&test, &reference));
         println!("{kind:>8}: worst block z = {worst:+.2}");
         if worst.abs() >= 4.0 {
             failures.push((kind, worst));

@@ -16,6 +16,7 @@ use lightlab::scene::builder::Emission;
 use lightlab::scene::{SceneBuilder, builtin};
 
 mod common;
+use common::blocks::{block_z, blocks, worst};
 use common::lambert::lambert_irradiance;
 
 const RADIANCE: f32 = 2.0;
@@ -99,25 +100,6 @@ fn render_assignment_mis(estimator: EstimatorKind, mis: MisSettings, spp: u32, s
     film
 }
 
-/// Per 16×16 block: mean luminance-free sum of RGB and the variance of that mean.
-fn blocks(film: &Film) -> Vec<(f64, f64)> {
-    let mut out = Vec::new();
-    for by in (0..film.height).step_by(16) {
-        for bx in (0..film.width).step_by(16) {
-            let (mut m, mut v) = (0f64, 0f64);
-            for y in by..(by + 16).min(film.height) {
-                for x in bx..(bx + 16).min(film.width) {
-                    let p = film.pixel(x, y);
-                    m += p.mean.element_sum() as f64;
-                    v += p.variance_of_mean().element_sum() as f64;
-                }
-            }
-            out.push((m, v));
-        }
-    }
-    out
-}
-
 #[test]
 fn all_estimators_agree_on_the_assignment_scene() {
     // The reference is BSDF-sampled: a light-sampled reference is heavy-tailed on the
@@ -143,11 +125,7 @@ fn all_estimators_agree_on_the_assignment_scene() {
             _ => 8192,
         };
         let test = blocks(&render_assignment_mis(estimator, mis, spp, 7));
-        let worst = test
-            .iter()
-            .zip(&reference)
-            .map(|(a, r)| (a.0 - r.0) / (a.1 + r.1).sqrt().max(1e-9))
-            .fold(0f64, |w, z| if z.abs() > w.abs() { z } else { w });
+        let worst = worst(&block_z(&test, &reference));
         println!("{kind:>20}: worst block z = {worst:+.2}");
         failures.push((kind, worst));
     }

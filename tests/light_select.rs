@@ -5,6 +5,7 @@
 //! `shirley-100` image within 4 standard errors per pixel block.
 
 mod common;
+use common::blocks::{block_z, blocks, worst};
 
 use common::chi2::{judge, sidak_alpha};
 use glam::Vec3;
@@ -296,25 +297,6 @@ fn render_shirley(
     film
 }
 
-/// Per 16×16 block: the sum of the pixel means (RGB summed) and its variance.
-fn blocks(film: &Film) -> Vec<(f64, f64)> {
-    let mut out = Vec::new();
-    for by in (0..film.height).step_by(16) {
-        for bx in (0..film.width).step_by(16) {
-            let (mut m, mut v) = (0f64, 0f64);
-            for y in by..(by + 16).min(film.height) {
-                for x in bx..(bx + 16).min(film.width) {
-                    let p = film.pixel(x, y);
-                    m += p.mean.element_sum() as f64;
-                    v += p.variance_of_mean().element_sum() as f64;
-                }
-            }
-            out.push((m, v));
-        }
-    }
-    out
-}
-
 #[test]
 fn all_selectors_render_the_same_shirley_100() {
     // The reference: MIS with the BVH selector (its pmf checked above) at 16× the test
@@ -360,11 +342,7 @@ fn all_selectors_render_the_same_shirley_100() {
             spp,
             7 + k as u64,
         ));
-        let z: Vec<f64> = test
-            .iter()
-            .zip(&reference)
-            .map(|(a, r)| (a.0 - r.0) / (a.1 + r.1).sqrt().max(1e-9))
-            .collect();
+        let z = block_z(&test, &reference);
         all.push((format!("{estimator}/{select}/{sampling}"), z));
     }
     let mut flat: Vec<f64> = all.iter().flat_map(|(_, z)| z.iter().copied()).collect();
@@ -376,10 +354,7 @@ fn all_selectors_render_the_same_shirley_100() {
     println!("robust spread of the block z-scores: {spread:.2} (median {median:+.2})");
     let mut failures = Vec::new();
     for (label, z) in &all {
-        let worst = z
-            .iter()
-            .copied()
-            .fold(0f64, |w, z| if z.abs() > w.abs() { z } else { w });
+        let worst = worst(z);
         println!(
             "{label:>24}: worst block z = {worst:+.2} ({:+.2} spreads)",
             worst / spread

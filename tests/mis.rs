@@ -4,6 +4,7 @@
 //! estimator where only light sampling can find the light.
 
 mod common;
+use common::blocks::{block_z, blocks, worst};
 
 use common::lambert::lambert_irradiance;
 use glam::Vec3;
@@ -202,25 +203,6 @@ fn mis_equals_light_sampling_when_only_light_sampling_can_find_the_light() {
     assert!(lit > 100, "the test scene must be lit ({lit} lit pixels)");
 }
 
-/// Per 16×16 block: sum of pixel means (RGB summed) and the variance of that sum.
-fn blocks(film: &lightlab::image::Film) -> Vec<(f64, f64)> {
-    let mut out = Vec::new();
-    for by in (0..film.height).step_by(16) {
-        for bx in (0..film.width).step_by(16) {
-            let (mut m, mut v) = (0f64, 0f64);
-            for y in by..(by + 16).min(film.height) {
-                for x in bx..(bx + 16).min(film.width) {
-                    let p = film.pixel(x, y);
-                    m += p.mean.element_sum() as f64;
-                    v += p.variance_of_mean().element_sum() as f64;
-                }
-            }
-            out.push((m, v));
-        }
-    }
-    out
-}
-
 /// Veach's scene: BSDF sampling and every MIS variant agree per pixel block with a long
 /// MIS render (MIS adds no bias), within 4 standard errors; light sampling agrees on the
 /// image mean. Per block, light sampling is heavy-tailed on the sharpest plate (the mirror
@@ -265,11 +247,7 @@ fn veach_mis_estimators_agree() {
     let mut failures = Vec::new();
     for (label, estimator, mis, spp) in runs {
         let test = render(estimator, mis, spp, 5);
-        let worst = test
-            .iter()
-            .zip(&reference)
-            .map(|(a, r)| (a.0 - r.0) / (a.1 + r.1).sqrt().max(1e-9))
-            .fold(0f64, |w, z| if z.abs() > w.abs() { z } else { w });
+        let worst = worst(&block_z(&test, &reference));
         println!("{label:>12}: worst block z = {worst:+.2}");
         if worst.abs() >= 4.0 {
             failures.push((label, worst));
