@@ -29,6 +29,10 @@ pub struct StrategyArgs {
     /// per shape). A shape without the chosen strategy uses area.
     #[arg(long)]
     pub light_sampling: Option<LightSampling>,
+    /// MIS compensation of environment-map sampling (Karlík et al. 2019): sample
+    /// ∝ max(0, L − mean L). Unbiased only with `--estimator mis`, so required with it.
+    #[arg(long)]
+    pub envmap_compensation: bool,
     /// Light selection among many lights: uniform, power, adaptive, bvh (default).
     #[arg(long)]
     pub light_select: Option<LightSelect>,
@@ -78,6 +82,15 @@ impl StrategyArgs {
                 }
                 *count = v;
             }
+        }
+        if self.envmap_compensation {
+            if s.estimator != EstimatorKind::Mis {
+                return Err(CliError::input(format!(
+                    "--envmap-compensation is unbiased only with --estimator mis, not {}",
+                    s.estimator
+                )));
+            }
+            s.envmap_compensation = true;
         }
         if let Some(v) = self.light_sampling {
             s.light_sampling = v;

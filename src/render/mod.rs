@@ -14,7 +14,7 @@ use glam::{DVec3, Vec2};
 use rayon::prelude::*;
 
 use crate::image::{Film, Filter, PixelStats};
-use crate::integrator::Estimator;
+use crate::integrator::{Estimator, EstimatorKind};
 use crate::math::Spectrum;
 use crate::sampling::{Sampler, Uniform};
 use crate::scene::Scene;
@@ -49,6 +49,9 @@ pub struct Control<'a> {
 pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -> RenderOutput {
     // The light-sampling strategy lives in the lights, where every estimator asks for it.
     let scene = &*scene.with_light_sampling(settings.light_sampling);
+    // MIS compensation makes environment sampling unbiased only under MIS.
+    let compensate = settings.envmap_compensation && settings.estimator == EstimatorKind::Mis;
+    let scene = &*scene.with_env_compensation(compensate);
     let camera = settings.camera(scene);
     let (w, h) = (camera.width, camera.height);
     let estimator =

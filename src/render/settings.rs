@@ -82,6 +82,9 @@ pub struct RenderSettings {
     pub pass: Pass,
     /// Pixel reconstruction filter (the one-pixel box unless a scene file asks).
     pub filter: Filter,
+    /// MIS compensation of environment-map sampling (Karlík et al. 2019); applied only
+    /// with the `mis` estimator, where it stays unbiased.
+    pub envmap_compensation: bool,
 }
 
 impl RenderSettings {
@@ -102,6 +105,7 @@ impl RenderSettings {
             resolution: None,
             pass: Pass::WHOLE,
             filter: asked.filter,
+            envmap_compensation: false,
         }
     }
 
@@ -115,9 +119,14 @@ impl RenderSettings {
 
     /// The strategy flags that reproduce these settings on the command line.
     pub fn flags(&self) -> String {
+        let compensation = if self.envmap_compensation {
+            " --envmap-compensation"
+        } else {
+            ""
+        };
         format!(
             "--estimator {} --mis {} --light-samples {} --bsdf-samples {} --light-sampling {} \
-             --light-select {} --sampler {} --spp {} --seed {}",
+             --light-select {} --sampler {} --spp {} --seed {}{}",
             self.estimator,
             self.mis.heuristic,
             self.mis.light_samples,
@@ -126,7 +135,8 @@ impl RenderSettings {
             self.light_select,
             self.sampler,
             self.spp,
-            self.seed
+            self.seed,
+            compensation
         )
     }
 }

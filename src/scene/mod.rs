@@ -91,6 +91,25 @@ impl Scene {
         Cow::Owned(scene)
     }
 
+    /// This scene with MIS compensation of its environment map on or off (see
+    /// [`Environment::set_compensation`](crate::light::Environment::set_compensation)):
+    /// borrowed when nothing changes, else a copy.
+    pub fn with_env_compensation(&self, on: bool) -> Cow<'_, Scene> {
+        let Some(i) = self.environment else {
+            return Cow::Borrowed(self);
+        };
+        match &self.lights[i] {
+            Light::Environment(e) if e.compensated() != on => {
+                let mut scene = self.clone();
+                if let Light::Environment(e) = &mut scene.lights[i] {
+                    e.set_compensation(on);
+                }
+                Cow::Owned(scene)
+            }
+            _ => Cow::Borrowed(self),
+        }
+    }
+
     /// The texture on material `m`'s reflectance, if any.
     #[inline]
     pub fn texture(&self, m: u32) -> Option<&MaterialTexture> {

@@ -41,6 +41,9 @@ enum Radiance {
     Map {
         image: LatLongImage,
         distribution: PiecewiseConstant2D,
+        /// The MIS-compensated distribution (Karlík et al. 2019), if any cell keeps
+        /// weight after the average is subtracted.
+        compensated: Option<PiecewiseConstant2D>,
     },
 }
 
@@ -57,6 +60,8 @@ pub struct Environment {
     integral: f32,
     /// Radius of a sphere bounding the scene, for Φ = π r² ∫ L dω.
     pub scene_radius: f32,
+    /// Sample (and report the pdf of) the MIS-compensated distribution.
+    compensation: bool,
 }
 
 /// Direction in the emitter's frame of image coordinates (u, v) ∈ [0, 1]², and sin θ.
@@ -78,6 +83,28 @@ fn direction_to_uv(w: Vec3) -> Vec2 {
 }
 
 impl LatLongImage {
+    /// Cell weights for MIS compensation: max(0, L̄_cell − L̄) × mean sin θ, with L̄ the
+    /// mean luminance over the sphere; `None` when no cell is above the mean.
+    fn compensated_weights(&self) -> Option<Vec<f32>> {
+        let rows = self.height - 1;
+        let dtheta = PI / rows as f32;
+        let (weights, _) = self.cell_weights();
+        // ∫L dω / 4π from the plain weights (mean luminance × mean sin θ per cell).
+        let dphi = 2.0 * PI / self.width as f32;
+        let integral: f64 = weights.iter().map(|&w| (w * dtheta * dphi) as f64).sum();
+        let mean = (integral / (4.0 * std::f64::consts::PI)) as f32;
+        let mut out = Vec::with_capacity(weights.len());
+        for j in 0..rows {
+            let (t0, t1) = (j as f32 * dtheta, (j + 1) as f32 * dtheta);
+            let mean_sin = (t0.cos() - t1.cos()) / dtheta;
+            for i in 0..self.width {
+                let cell_mean = weights[j * self.width + i] / mean_sin.max(f32::MIN_POSITIVE);
+                out.push((cell_mean - mean).max(0.0) * mean_sin);
+            }
+        }
+        out.iter().any(|&w| w > 0.0).then_some(out)
+    }
+
     /// An image of `width × height` texels; negative and non-finite values are an error.
     pub fn new(width: usize, height: usize, texels: Vec<Spectrum>) -> Result<Self, String> {
         if width == 0 || height == 0 || texels.len() != width * height {
@@ -172,6 +199,7 @@ impl Environment {
             to_local: Mat3::IDENTITY,
             integral: 4.0 * PI * luminance(l),
             scene_radius: 1.0,
+            compensation: false,
         }
     }
 
@@ -189,16 +217,21 @@ impl Environment {
         let (weights, integral) = image.cell_weights();
         let distribution = PiecewiseConstant2D::new(&weights, image.width, rows)
             .map_err(|e| format!("environment sampling distribution: {e:?}"))?;
+        let compensated = image
+            .compensated_weights()
+            .and_then(|w| PiecewiseConstant2D::new(&w, image.width, rows).ok());
         Ok(Environment {
             radiance: Radiance::Map {
                 image,
                 distribution,
+                compensated,
             },
             scale,
             to_world: rotation,
             to_local: rotation.transpose(),
             integral: integral * scale,
             scene_radius: 1.0,
+            compensation: false,
         })
     }
 
@@ -230,11 +263,8 @@ impl Environment {
                 let (w, pdf) = square_to_uniform_sphere(u);
                 Some((w, *l * self.scale, pdf))
             }
-            Radiance::Map {
-                image,
-                distribution,
-            } => {
-                let (cell, pdf_uv) = distribution.sample(u);
+            Radiance::Map { image, .. } => {
+                let (cell, pdf_uv) = self.distribution()?.sample(u);
                 let x = cell.x + image.half_texel();
                 let uv = Vec2::new(x - x.floor(), cell.y);
                 let (local, sin_t) = uv_to_direction(uv);
@@ -256,10 +286,10 @@ impl Environment {
     pub fn pdf(&self, w: Vec3) -> f32 {
         match &self.radiance {
             Radiance::Constant(_) => uniform_sphere_pdf(w),
-            Radiance::Map {
-                image,
-                distribution,
-            } => {
+            Radiance::Map { image, .. } => {
+                let Some(distribution) = self.distribution() else {
+                    return 0.0;
+                };
                 let local = self.to_local * w;
                 // sin θ from the horizontal components: accurate near the poles.
                 let sin_t = (local.x * local.x + local.z * local.z).sqrt();
@@ -271,6 +301,44 @@ impl Environment {
                 let cell = Vec2::new(x - x.floor(), uv.y);
                 distribution.pdf(cell) / (2.0 * PI * PI * sin_t)
             }
+        }
+    }
+
+    /// Turns MIS compensation on or off (Karlík, Šik, Vévoda, Skřivan & Křivánek 2019,
+    /// "MIS Compensation: Optimizing Sampling Techniques in Multiple Importance
+    /// Sampling"): sample ∝ max(0, L − L̄) instead of ∝ L, where L̄ is the mean radiance
+    /// over the sphere. Directions dimmer than the mean then get density zero, so this is
+    /// only unbiased inside MIS, whose BSDF strategy covers them. A map with no texel
+    /// above its mean (a constant) keeps its plain distribution.
+    pub fn set_compensation(&mut self, on: bool) {
+        self.compensation = on;
+    }
+
+    /// Whether MIS compensation is on (and the map has a compensated distribution).
+    pub fn compensated(&self) -> bool {
+        self.compensation
+            && matches!(
+                &self.radiance,
+                Radiance::Map {
+                    compensated: Some(_),
+                    ..
+                }
+            )
+    }
+
+    /// The distribution in use.
+    #[inline]
+    fn distribution(&self) -> Option<&PiecewiseConstant2D> {
+        match &self.radiance {
+            Radiance::Constant(_) => None,
+            Radiance::Map {
+                distribution,
+                compensated,
+                ..
+            } => Some(match compensated {
+                Some(c) if self.compensation => c,
+                _ => distribution,
+            }),
         }
     }
 
