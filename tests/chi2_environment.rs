@@ -12,18 +12,27 @@ use lightlab::math::Spectrum;
 use lightlab::sampling::chi2::{Domain, integrate_pdf};
 use lightlab::sampling::{Rng32, Uniform};
 
-fn cases() -> Vec<(&'static str, Environment)> {
-    let mut one = vec![Spectrum::ZERO; 16 * 8];
-    one[3 * 16 + 5] = Spectrum::new(4.0, 2.0, 1.0);
-    let mut rng = Rng32::new(17);
-    let random: Vec<Spectrum> = (0..8 * 5)
+/// An 8×5 map of random radiance in [0, 3)³.
+fn random_texels(seed: u64) -> Vec<Spectrum> {
+    let mut rng = Rng32::new(seed);
+    (0..8 * 5)
         .map(|_| Spectrum::new(rng.next_1d(), rng.next_1d(), rng.next_1d()) * 3.0)
-        .collect();
-    let sky = SkyParameters {
+        .collect()
+}
+
+/// The procedural sky, small, with a sun wide enough for the chi-square cells.
+fn small_sky() -> LatLongImage {
+    procedural_sky(&SkyParameters {
         width: 64,
         sun_radius_degrees: 6.0,
         ..SkyParameters::default()
-    };
+    })
+}
+
+fn cases() -> Vec<(&'static str, Environment)> {
+    let mut one = vec![Spectrum::ZERO; 16 * 8];
+    one[3 * 16 + 5] = Spectrum::new(4.0, 2.0, 1.0);
+    let random = random_texels(17);
     let map = |w, h, t| LatLongImage::new(w, h, t).expect("image");
     let tilt = Mat3::from_rotation_x(0.7) * Mat3::from_rotation_y(2.0);
     vec![
@@ -41,7 +50,7 @@ fn cases() -> Vec<(&'static str, Environment)> {
         ),
         (
             "envmap-procedural-sky",
-            Environment::from_image(procedural_sky(&sky), 1.0, Mat3::IDENTITY),
+            Environment::from_image(small_sky(), 1.0, Mat3::IDENTITY),
         ),
         (
             "envmap-random-rotated",
@@ -60,19 +69,10 @@ fn cases() -> Vec<(&'static str, Environment)> {
 
 /// MIS-compensated versions of the random map and the sky (Karlík et al. 2019).
 fn compensated_cases() -> Vec<(&'static str, Environment)> {
-    let mut rng = Rng32::new(23);
-    let random: Vec<Spectrum> = (0..8 * 5)
-        .map(|_| Spectrum::new(rng.next_1d(), rng.next_1d(), rng.next_1d()) * 3.0)
-        .collect();
-    let sky = SkyParameters {
-        width: 64,
-        sun_radius_degrees: 6.0,
-        ..SkyParameters::default()
-    };
-    let image = |w, h, t| LatLongImage::new(w, h, t).expect("image");
+    let random = LatLongImage::new(8, 5, random_texels(23)).expect("image");
     let maps = [
-        ("envmap-random-compensated", image(8, 5, random)),
-        ("envmap-sky-compensated", procedural_sky(&sky)),
+        ("envmap-random-compensated", random),
+        ("envmap-sky-compensated", small_sky()),
     ];
     maps.into_iter()
         .map(|(n, img)| {
