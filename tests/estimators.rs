@@ -9,48 +9,21 @@ use lightlab::image::Film;
 use lightlab::integrator::{Estimator, EstimatorKind, MisHeuristic, MisSettings};
 use lightlab::light::select::LightSelect;
 use lightlab::math::{PI, Spectrum};
-use lightlab::render::camera::Camera;
 use lightlab::render::{RenderSettings, render_quiet};
 use lightlab::sampling::{Rng32, SamplerKind};
-use lightlab::scene::builder::Emission;
-use lightlab::scene::{SceneBuilder, builtin};
+use lightlab::scene::builtin;
 
 mod common;
 use common::blocks::{block_z, blocks, worst};
-use common::lambert::lambert_irradiance;
-
-const RADIANCE: f32 = 2.0;
+use common::lambert::{RECTANGLE_RADIANCE as RADIANCE, floor_under_rectangle, lambert_irradiance};
 
 #[test]
 fn irradiance_under_a_rectangle_matches_lambert_for_every_estimator() {
     // A white Lambertian floor patch (L_out = E/π) under a vertical rectangle light at
     // x = 0.6 facing −x, reaching below the floor's horizon.
-    let mut b = SceneBuilder::new("lambert");
-    let white = b.material(Material::Diffuse(Diffuse {
+    let (scene, corners) = floor_under_rectangle(Material::Diffuse(Diffuse {
         reflectance: Spectrum::ONE,
     }));
-    b.rectangle(
-        Vec3::new(-0.5, 0.0, 0.5),
-        Vec3::new(1.0, 0.0, 0.0),
-        Vec3::new(0.0, 0.0, -1.0),
-        white,
-        None,
-    );
-    let (o, ea, eb) = (
-        Vec3::new(0.6, -0.4, -0.6),
-        Vec3::new(0.0, 0.0, 1.2),
-        Vec3::new(0.0, 1.4, 0.0),
-    );
-    b.rectangle(
-        o,
-        ea,
-        eb,
-        white,
-        Some(Emission::new(Spectrum::splat(RADIANCE))),
-    );
-    let camera = Camera::look_at(Vec3::new(0.0, 3.0, 0.1), Vec3::ZERO, Vec3::Y, 40.0, 8, 8);
-    let scene = b.build(camera, 1).expect("scene");
-    let corners = [o, o + ea, o + ea + eb, o + eb];
     for x in [
         Vec3::ZERO,
         Vec3::new(0.3, 0.0, 0.2),

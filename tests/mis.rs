@@ -6,7 +6,7 @@
 mod common;
 use common::blocks::{block_z, blocks, worst};
 
-use common::lambert::lambert_irradiance;
+use common::lambert::{RECTANGLE_RADIANCE as RADIANCE, floor_under_rectangle, lambert_irradiance};
 use glam::Vec3;
 use lightlab::bsdf::{Diffuse, Material, Phong};
 use lightlab::geometry::{Ray, SurfaceHit};
@@ -18,8 +18,6 @@ use lightlab::render::{RenderSettings, render_quiet};
 use lightlab::sampling::{Rng32, SamplerKind};
 use lightlab::scene::builder::Emission;
 use lightlab::scene::{Scene, SceneBuilder};
-
-const RADIANCE: f32 = 2.0;
 
 fn floor_hit(scene: &Scene, x: Vec3) -> SurfaceHit {
     let ray = Ray::new(x + Vec3::Y, -Vec3::Y);
@@ -62,8 +60,7 @@ fn mis_matches_lambert_for_every_heuristic_and_sample_count() {
     // A white floor (diffuse, then a glossy Phong) under a vertical rectangle light that
     // reaches below the floor's horizon.
     for glossy in [false, true] {
-        let mut b = SceneBuilder::new("lambert-mis");
-        let floor = b.material(if glossy {
+        let (scene, corners) = floor_under_rectangle(if glossy {
             Material::Phong(Phong {
                 kd: Spectrum::splat(0.3),
                 ks: Spectrum::splat(0.6),
@@ -74,23 +71,6 @@ fn mis_matches_lambert_for_every_heuristic_and_sample_count() {
                 reflectance: Spectrum::ONE,
             })
         });
-        b.rectangle(
-            Vec3::new(-0.5, 0.0, 0.5),
-            Vec3::new(1.0, 0.0, 0.0),
-            Vec3::new(0.0, 0.0, -1.0),
-            floor,
-            None,
-        );
-        let (o, ea, eb) = (
-            Vec3::new(0.6, -0.4, -0.6),
-            Vec3::new(0.0, 0.0, 1.2),
-            Vec3::new(0.0, 1.4, 0.0),
-        );
-        let emitter = Some(Emission::new(Spectrum::splat(RADIANCE)));
-        b.rectangle(o, ea, eb, floor, emitter);
-        let camera = Camera::look_at(Vec3::new(0.0, 3.0, 0.1), Vec3::ZERO, Vec3::Y, 40.0, 8, 8);
-        let scene = b.build(camera, 1).expect("scene");
-        let corners = [o, o + ea, o + ea + eb, o + eb];
         for x in [Vec3::ZERO, Vec3::new(-0.4, 0.0, -0.3)] {
             let hit = floor_hit(&scene, x);
             // The diffuse answer is analytic; the glossy one comes from a long BSDF-sampled

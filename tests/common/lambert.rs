@@ -32,3 +32,38 @@ pub fn lambert_irradiance(x: Vec3, n: Vec3, polygon: &[Vec3], radiance: f32) -> 
     }
     0.5 * radiance as f64 * sum.abs()
 }
+
+/// Radiance of the rectangle light of [`floor_under_rectangle`].
+pub const RECTANGLE_RADIANCE: f32 = 2.0;
+
+/// A 1×1 floor patch at y = 0 of material `floor` under a vertical rectangle light at
+/// x = 0.6 facing −x that reaches below the floor's horizon, seen from above; returns the
+/// scene and the light's corners (for [`lambert_irradiance`]).
+pub fn floor_under_rectangle(
+    floor: lightlab::bsdf::Material,
+) -> (lightlab::scene::Scene, [Vec3; 4]) {
+    use lightlab::math::Spectrum;
+    use lightlab::render::camera::Camera;
+    use lightlab::scene::SceneBuilder;
+    use lightlab::scene::builder::Emission;
+
+    let mut b = SceneBuilder::new("floor-under-rectangle");
+    let m = b.material(floor);
+    b.rectangle(
+        Vec3::new(-0.5, 0.0, 0.5),
+        Vec3::new(1.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, -1.0),
+        m,
+        None,
+    );
+    let (o, ea, eb) = (
+        Vec3::new(0.6, -0.4, -0.6),
+        Vec3::new(0.0, 0.0, 1.2),
+        Vec3::new(0.0, 1.4, 0.0),
+    );
+    let emitter = Some(Emission::new(Spectrum::splat(RECTANGLE_RADIANCE)));
+    b.rectangle(o, ea, eb, m, emitter);
+    let camera = Camera::look_at(Vec3::new(0.0, 3.0, 0.1), Vec3::ZERO, Vec3::Y, 40.0, 8, 8);
+    let scene = b.build(camera, 1).expect("scene");
+    (scene, [o, o + ea, o + ea + eb, o + eb])
+}
