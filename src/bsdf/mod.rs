@@ -28,6 +28,7 @@ pub use rough_plastic::{AIR_IOR, POLYPROPYLENE_IOR, PlasticParams, RoughPlastic}
 use glam::{Vec2, Vec3};
 
 use crate::math::Spectrum;
+use crate::sampling::sampler::ONE_MINUS_EPSILON;
 use crate::sampling::warp::{square_to_uniform_hemisphere, uniform_hemisphere_pdf};
 
 /// A direction drawn from a BSDF. `pdf` is per unit solid angle.
@@ -83,6 +84,27 @@ pub trait Bsdf {
     fn has_delta_lobe(&self) -> bool {
         self.is_delta()
     }
+}
+
+/// The sample of `bsdf` at `w_in` for `w_out`, with the BSDF's own `eval` and `pdf`, so a
+/// sample and a later `pdf` query agree to the last bit (what MIS weights need); `None`
+/// where that density is zero or not finite.
+#[inline]
+pub(crate) fn sample_at(bsdf: &impl Bsdf, w_in: Vec3, w_out: Vec3) -> Option<BsdfSample> {
+    let pdf = bsdf.pdf(w_in, w_out);
+    (pdf > 0.0 && pdf.is_finite()).then(|| BsdfSample {
+        w_in,
+        f: bsdf.eval(w_in, w_out),
+        pdf,
+        delta: false,
+    })
+}
+
+/// After a lobe was chosen by `u < p` being false, the part of `u` above `p` rescaled to
+/// [0, 1), free for the lobe's own sampling (the lecture's "one random number reused").
+#[inline]
+pub(crate) fn reuse_above(u: f32, p: f32) -> f32 {
+    ((u - p) / (1.0 - p)).clamp(0.0, ONE_MINUS_EPSILON)
 }
 
 /// The closed set of materials a scene can use: one `match` forwards each call.

@@ -5,7 +5,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::{Bsdf, BsdfSample};
+use super::{Bsdf, BsdfSample, reuse_above, sample_at};
 use crate::math::{Frame, INV_PI, INV_TWO_PI, Spectrum, spectrum::luminance};
 use crate::sampling::warp::{
     cosine_hemisphere_pdf, phong_lobe_pdf, square_to_cosine_hemisphere, square_to_phong_lobe,
@@ -63,19 +63,13 @@ impl Bsdf for Phong {
             let (local, _) = square_to_phong_lobe(u, self.exponent);
             Frame::from_normal(reflect(w_out)).to_world(local)
         } else {
-            let u = Vec2::new(((u.x - ps) / (1.0 - ps)).min(1.0), u.y);
+            let u = Vec2::new(reuse_above(u.x, ps), u.y);
             square_to_cosine_hemisphere(u).0
         };
         if w_in.z <= 0.0 {
             return None;
         }
-        let pdf = self.pdf(w_in, w_out);
-        (pdf > 0.0).then(|| BsdfSample {
-            w_in,
-            f: self.eval(w_in, w_out),
-            pdf,
-            delta: false,
-        })
+        sample_at(self, w_in, w_out)
     }
 
     /// Mixture density (1 − pₛ)·cos θ/π + pₛ·(n + 1)/(2π)·cosⁿα, per steradian, over the

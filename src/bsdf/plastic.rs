@@ -7,7 +7,7 @@ use glam::{Vec2, Vec3};
 
 use super::fresnel::{fresnel_dielectric, fresnel_diffuse_reflectance};
 use super::rough_plastic::PlasticParams;
-use super::{Bsdf, BsdfSample};
+use super::{Bsdf, BsdfSample, reuse_above, sample_at};
 use crate::math::{INV_PI, Spectrum};
 use crate::sampling::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
 
@@ -70,15 +70,9 @@ impl Bsdf for Plastic {
                 delta: true,
             });
         }
-        let u = Vec2::new(((u.x - ps) / (1.0 - ps)).min(1.0 - f32::EPSILON / 2.0), u.y);
+        let u = Vec2::new(reuse_above(u.x, ps), u.y);
         let (w_in, _) = square_to_cosine_hemisphere(u);
-        let pdf = self.pdf(w_in, w_out);
-        (pdf > 0.0).then(|| BsdfSample {
-            w_in,
-            f: self.eval(w_in, w_out),
-            pdf,
-            delta: false,
-        })
+        sample_at(self, w_in, w_out)
     }
 
     /// (1 − p_s)·cos θ_in/π: the density of the diffuse lobe's samples.

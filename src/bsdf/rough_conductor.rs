@@ -9,7 +9,7 @@ use glam::{Vec2, Vec3};
 
 use super::fresnel::fresnel_conductor;
 use super::microfacet::{Microfacet, MicrofacetType, half_vector, reflect};
-use super::{Bsdf, BsdfSample, ConductorMaterial};
+use super::{Bsdf, BsdfSample, ConductorMaterial, sample_at};
 use crate::math::Spectrum;
 
 /// A rough conductor with Mitsuba 3's parameter names.
@@ -89,13 +89,7 @@ impl Bsdf for RoughConductor {
         if w_in.z <= 0.0 {
             return None;
         }
-        let pdf = self.pdf(w_in, w_out);
-        (pdf > 0.0 && pdf.is_finite()).then(|| BsdfSample {
-            w_in,
-            f: self.eval(w_in, w_out),
-            pdf,
-            delta: false,
-        })
+        sample_at(self, w_in, w_out)
     }
 
     /// p(h)/(4 w_out·h) per steradian, p the microfacet sampling density.

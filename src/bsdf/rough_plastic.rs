@@ -13,7 +13,7 @@ use glam::{Vec2, Vec3};
 use super::coat::CoatTables;
 use super::fresnel::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetType, half_vector, reflect};
-use super::{Bsdf, BsdfSample};
+use super::{Bsdf, BsdfSample, reuse_above, sample_at};
 use crate::math::{INV_PI, Spectrum};
 use crate::sampling::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
 
@@ -175,16 +175,10 @@ impl Bsdf for RoughPlastic {
             let (m, _) = self.microfacet().sample(w_out, Vec2::new(u.x / ps, u.y));
             reflect(w_out, m)
         } else {
-            let u = Vec2::new(((u.x - ps) / (1.0 - ps)).min(1.0 - f32::EPSILON / 2.0), u.y);
+            let u = Vec2::new(reuse_above(u.x, ps), u.y);
             square_to_cosine_hemisphere(u).0
         };
-        let pdf = self.pdf(w_in, w_out);
-        (pdf > 0.0 && pdf.is_finite()).then(|| BsdfSample {
-            w_in,
-            f: self.eval(w_in, w_out),
-            pdf,
-            delta: false,
-        })
+        sample_at(self, w_in, w_out)
     }
 
     /// p_s·p(h)/(4 w_out·h) + (1 − p_s)·cos θ_in/π per steradian.
