@@ -30,3 +30,4 @@ pub mod math;
 pub mod render;
 pub mod sampling;
 pub mod scene;
+pub mod settings;

@@ -15,10 +15,10 @@ use lightlab::integrator::EstimatorKind;
 use lightlab::light::select::{LightSelect, LightSelector, Selection, Selector};
 use lightlab::light::{LightSampling, ShadingPoint};
 use lightlab::math::Spectrum;
-use lightlab::render::camera::Camera;
 use lightlab::render::{RenderSettings, render_quiet};
 use lightlab::sampling::chi2::{Chi2Report, chi2_p_value};
 use lightlab::sampling::{Rng32, SamplerKind};
+use lightlab::scene::Camera;
 use lightlab::scene::builder::Emission;
 use lightlab::scene::{Scene, SceneBuilder, builtin};
 

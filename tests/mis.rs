@@ -13,9 +13,9 @@ use lightlab::geometry::{Ray, SurfaceHit};
 use lightlab::integrator::{Estimator, EstimatorKind, MisHeuristic, MisSettings};
 use lightlab::light::select::LightSelect;
 use lightlab::math::{PI, Spectrum};
-use lightlab::render::camera::Camera;
 use lightlab::render::{RenderSettings, render_quiet};
 use lightlab::sampling::{Rng32, SamplerKind};
+use lightlab::scene::Camera;
 use lightlab::scene::builder::Emission;
 use lightlab::scene::{Scene, SceneBuilder};
 

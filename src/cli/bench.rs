@@ -47,10 +47,7 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
     if args.runs == 0 || args.spp == 0 {
         return Err(CliError::input("--runs and --spp must be at least 1"));
     }
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(args.threads.unwrap_or(0))
-        .build()
-        .map_err(CliError::failure)?;
+    let pool = super::args::thread_pool(args.threads)?;
     let scenes = args
         .scenes
         .iter()

@@ -12,31 +12,15 @@ pub use mis::{MisHeuristic, MisSettings};
 
 use glam::Vec3;
 
-use crate::bsdf::Bsdf;
+use crate::bsdf::{Bsdf, Material};
 use crate::geometry::{NO_LIGHT, Ray, SurfaceHit};
-use crate::light::ShadingPoint;
 use crate::light::select::{LightSelect, Selector};
+use crate::light::{LightStrategy, ShadingPoint};
 use crate::math::{Frame, Spectrum};
 use crate::sampling::Uniform;
 use crate::scene::Scene;
 
-named_enum! {
-    /// The direct-lighting strategy, by CLI name.
-    pub enum EstimatorKind: "estimator" {
-        /// Uniform directions by (z, φ), weight 2π.
-        Hemisphere => "hemisphere",
-        /// Uniform directions by rejection from the cube [-1, 1]³.
-        HemisphereRejection => "hemisphere-rejection",
-        /// Cosine-weighted directions (Malley's method).
-        Cosine => "cosine",
-        /// The BSDF's own `sample`.
-        Bsdf => "bsdf",
-        /// A point on a light (area form), one shadow ray.
-        Light => "light",
-        /// Light and BSDF sampling combined by multiple importance sampling.
-        Mis => "mis",
-    }
-}
+pub use crate::settings::EstimatorKind;
 
 /// A direct-lighting estimator bound to a scene: the strategy and the light selector.
 #[derive(Clone, Debug)]
@@ -47,6 +31,8 @@ pub struct Estimator {
     pub selector: Selector,
     /// Sample counts and weighting of the MIS estimator.
     pub mis: MisSettings,
+    /// How every light is sampled (per-shape strategy, environment compensation).
+    pub lights: LightStrategy,
 }
 
 impl Estimator {
@@ -56,7 +42,14 @@ impl Estimator {
             kind,
             selector: Selector::new(select, &scene.lights),
             mis: MisSettings::default(),
+            lights: LightStrategy::default(),
         }
+    }
+
+    /// The same estimator sampling lights with `lights`.
+    pub fn with_light_strategy(mut self, lights: LightStrategy) -> Estimator {
+        self.lights = lights;
+        self
     }
 
     /// The same estimator with the MIS settings `mis`.
@@ -110,24 +103,35 @@ impl Estimator {
             ng: hit.ng,
             n: hit.frame.n,
         };
+        let ctx = Context {
+            scene,
+            selector: &self.selector,
+            lights: self.lights,
+            at: &at,
+            hit,
+            material,
+            w_out: w_out_local,
+        };
         match self.kind {
-            EstimatorKind::Light => {
-                light::estimate(scene, &self.selector, &at, hit, material, w_out_local, src)
-            }
-            EstimatorKind::Mis => {
-                let ctx = mis::Context {
-                    scene,
-                    selector: &self.selector,
-                    at: &at,
-                    hit,
-                    material,
-                    w_out: w_out_local,
-                };
-                mis::estimate(&ctx, self.mis, src)
-            }
+            EstimatorKind::Light => light::estimate(&ctx, src),
+            EstimatorKind::Mis => mis::estimate(&ctx, self.mis, src),
             kind => directional::estimate(scene, kind, hit, material, w_out_local, src),
         }
     }
+}
+
+/// The scene and shading context every sample of one estimate shares.
+#[derive(Clone, Copy)]
+struct Context<'a> {
+    scene: &'a Scene,
+    selector: &'a Selector,
+    /// How lights are sampled.
+    lights: LightStrategy,
+    at: &'a ShadingPoint,
+    hit: &'a SurfaceHit,
+    material: &'a Material,
+    /// w_out in the local shading frame.
+    w_out: Vec3,
 }
 
 /// Radiance emitted by the surface at `hit` towards `w` (world direction, pointing away

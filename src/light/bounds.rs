@@ -201,7 +201,7 @@ impl Light {
 mod tests {
     use super::*;
     use crate::geometry::shape::{Rectangle, Sphere};
-    use crate::light::{AreaLight, LightSampling, PointLight};
+    use crate::light::{AreaLight, PointLight};
     use crate::math::Spectrum;
 
     fn at(p: Vec3, n: Vec3) -> ShadingPoint {
@@ -213,7 +213,6 @@ mod tests {
             shape: Shape::Sphere(Sphere { center, radius }),
             radiance: Spectrum::ONE,
             two_sided: false,
-            sampling: LightSampling::Area,
         })
     }
 
@@ -252,7 +251,6 @@ mod tests {
             shape: Shape::Rectangle(quad),
             radiance: Spectrum::ONE,
             two_sided: false,
-            sampling: LightSampling::Area,
         });
         assert!(quad.bounds().w.x < 0.0);
         assert!(quad.bounds().importance(&p) > 0.0);
@@ -278,7 +276,6 @@ mod tests {
             shape: Shape::Rectangle(quad),
             radiance: Spectrum::ONE,
             two_sided: false,
-            sampling: LightSampling::Area,
         });
         assert!(quad.bounds().w.y > 0.0);
         assert_eq!(quad.bounds().importance(&p), 0.0);

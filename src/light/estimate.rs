@@ -87,7 +87,7 @@ impl Light {
 mod tests {
     use super::*;
     use crate::geometry::shape::{Rectangle, Sphere};
-    use crate::light::{AreaLight, LightSampling};
+    use crate::light::AreaLight;
     use crate::math::Spectrum;
 
     fn area(shape: Shape) -> Light {
@@ -95,7 +95,6 @@ mod tests {
             shape,
             radiance: Spectrum::splat(2.0),
             two_sided: false,
-            sampling: LightSampling::Area,
         })
     }
 

@@ -38,20 +38,7 @@ pub trait LightSelector {
     fn pmf(&self, at: &ShadingPoint, index: usize) -> f32;
 }
 
-named_enum! {
-    /// Light selection strategy, by CLI name.
-    pub enum LightSelect: "light selection" {
-        /// i = ⌊ξ·n⌋ (lecture solution #1).
-        Uniform => "uniform",
-        /// ∝ emitted power Φ, by an alias table (lecture solution #2).
-        Power => "power",
-        /// ∝ a per-point contribution estimate with a floor, O(n) (lecture solution #3).
-        Adaptive => "adaptive",
-        /// A light BVH with importance from distance and orientation bounds, O(log n)
-        /// (Conty Estevez & Kulla 2018).
-        Bvh => "bvh",
-    }
-}
+pub use crate::settings::LightSelect;
 
 /// The scene's selector (closed set, one `match`).
 #[derive(Clone, Debug)]
@@ -110,7 +97,7 @@ mod tests {
     use super::*;
     use crate::geometry::Shape;
     use crate::geometry::shape::Sphere;
-    use crate::light::{AreaLight, LightSampling};
+    use crate::light::AreaLight;
     use crate::math::Spectrum;
 
     fn sphere(x: f32, radiance: f32) -> Light {
@@ -121,7 +108,6 @@ mod tests {
             }),
             radiance: Spectrum::splat(radiance),
             two_sided: false,
-            sampling: LightSampling::Area,
         })
     }
 
