@@ -4,7 +4,7 @@
 //! estimator where only light sampling can find the light.
 
 mod common;
-use common::blocks::{block_z, blocks, worst};
+use common::blocks::{block_z, blocks, render_small, worst};
 
 use common::lambert::{RECTANGLE_RADIANCE as RADIANCE, floor_under_rectangle, lambert_irradiance};
 use glam::Vec3;
@@ -194,16 +194,10 @@ fn mis_equals_light_sampling_when_only_light_sampling_can_find_the_light() {
 fn veach_mis_estimators_agree() {
     let scene = lightlab::scene::builtin::build("veach-mis").expect("scene");
     let render = |estimator: EstimatorKind, mis: MisSettings, spp: u32, seed: u64| {
-        let mut s = RenderSettings::for_scene(&scene);
-        s.estimator = estimator;
-        s.mis = mis;
-        s.spp = spp;
-        s.seed = seed;
-        s.sampler = SamplerKind::Independent;
-        s.resolution = Some((48, 32));
-        let film = render_quiet(&scene, &s).film;
-        assert!(film.pixels.iter().all(|p| p.mean.is_finite()));
-        blocks(&film)
+        blocks(&render_small(&scene, spp, seed, |s| {
+            s.estimator = estimator;
+            s.mis = mis;
+        }))
     };
     let reference = render(EstimatorKind::Mis, MisSettings::default(), 8192, 1);
     let mut runs = vec![("bsdf", EstimatorKind::Bsdf, MisSettings::default(), 4096)];

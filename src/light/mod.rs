@@ -3,19 +3,16 @@
 //! and densities at a shading point.
 
 mod area;
-mod bounds;
-pub mod cone;
 pub mod environment;
-mod estimate;
 mod point;
 mod polygon;
 pub mod select;
 
 pub use area::{AreaLight, EmitterKind, LightPoint, LightSampling, uniform_area_pdf};
-pub use bounds::LightBounds;
 pub use environment::Environment;
 pub use point::PointLight;
 pub use polygon::PolygonLight;
+pub use select::LightBounds;
 
 use glam::{Vec2, Vec3};
 

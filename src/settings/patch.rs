@@ -167,32 +167,23 @@ impl RenderPatch {
     /// Checks each set field's range on its own (combinations are checked when the
     /// settings are resolved).
     pub fn validate(&self) -> Result<(), SettingsError> {
-        for (name, value) in [
-            (flag::LIGHT_SAMPLES, self.light_samples),
-            (flag::BSDF_SAMPLES, self.bsdf_samples),
-        ] {
+        let ranges = [
+            (flag::LIGHT_SAMPLES, self.light_samples, 1, MAX_MIS_SAMPLES),
+            (flag::BSDF_SAMPLES, self.bsdf_samples, 1, MAX_MIS_SAMPLES),
+            (flag::SPP, self.spp, 1, u32::MAX),
+            (flag::WIDTH, self.width, 1, MAX_SIDE),
+            (flag::HEIGHT, self.height, 1, MAX_SIDE),
+        ];
+        for (name, value, lo, hi) in ranges {
             if let Some(v) = value
-                && !(1..=MAX_MIS_SAMPLES).contains(&v)
+                && !(lo..=hi).contains(&v)
             {
-                return Err(SettingsError::bad(
-                    name,
-                    v,
-                    format!("must be in 1..={MAX_MIS_SAMPLES}"),
-                ));
-            }
-        }
-        if self.spp == Some(0) {
-            return Err(SettingsError::bad(flag::SPP, 0, "must be at least 1"));
-        }
-        for (name, value) in [(flag::WIDTH, self.width), (flag::HEIGHT, self.height)] {
-            if let Some(v) = value
-                && !(1..=MAX_SIDE).contains(&v)
-            {
-                return Err(SettingsError::bad(
-                    name,
-                    v,
-                    format!("must be in 1..={MAX_SIDE}"),
-                ));
+                let range = if hi == u32::MAX {
+                    format!("must be at least {lo}")
+                } else {
+                    format!("must be in {lo}..={hi}")
+                };
+                return Err(SettingsError::bad(name, v, range));
             }
         }
         Ok(())

@@ -8,11 +8,15 @@
 //! MIS can weight BSDF-sampled hits with it.
 
 mod adaptive;
+mod bounds;
 mod bvh;
+pub mod cone;
+mod estimate;
 mod power;
 mod uniform;
 
 pub use adaptive::{ADAPTIVE_FLOOR, AdaptiveSelector};
+pub use bounds::LightBounds;
 pub use bvh::BvhSelector;
 pub use power::PowerSelector;
 pub use uniform::UniformSelector;

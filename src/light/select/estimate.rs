@@ -6,13 +6,13 @@
 //! The estimate is deterministic in the shading point, so a selector's `pmf` can
 //! recompute it. It may be zero for a light that still contributes (a quad whose centre
 //! is below the horizon but whose edge is above); the adaptive selector mixes it with
-//! the conservative [`LightBounds::importance`](super::LightBounds::importance) so no
+//! the conservative [`LightBounds::importance`](super::bounds::LightBounds::importance) so no
 //! such light gets probability zero.
 
 use glam::Vec3;
 
-use super::{Light, ShadingPoint};
 use crate::geometry::Shape;
+use crate::light::{Light, ShadingPoint};
 use crate::math::{PI, spectrum::luminance};
 
 impl Light {

@@ -8,8 +8,8 @@
 use glam::Vec3;
 
 use super::cone::{DirectionCone, bound_subtended_directions, cos_sub_clamped, sin_sub_clamped};
-use super::{Light, ShadingPoint};
 use crate::geometry::{Aabb, Shape};
+use crate::light::{Light, ShadingPoint};
 use crate::math::{PI, safe_sqrt, spectrum::luminance};
 
 /// Spatial, emission and orientation bounds of a light or a cluster of lights.
