@@ -59,7 +59,13 @@ pub enum Selector {
 
 impl Selector {
     /// Builds the selector `kind` over the scene's `lights` (indices into that slice).
+    /// With one light every strategy chooses it with probability 1 (where the bounds say
+    /// it cannot contribute, its sample is zero anyway), so no per-point selection work
+    /// is done: uniform choice.
     pub fn new(kind: LightSelect, lights: &[Light]) -> Selector {
+        if lights.len() == 1 {
+            return Selector::Uniform(UniformSelector::new(1));
+        }
         match kind {
             LightSelect::Uniform => Selector::Uniform(UniformSelector::new(lights.len())),
             LightSelect::Power => {
