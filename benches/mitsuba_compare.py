@@ -58,8 +58,8 @@ for _ in range(runs):
 """
 
 
-def ensure_venv():
-    """Re-runs this script inside target/bench-venv, creating it if needed."""
+def ensure_venv(script=__file__):
+    """Re-runs `script` inside target/bench-venv, creating the venv if needed."""
     if os.path.realpath(sys.prefix) == os.path.realpath(VENV):
         return
     python = os.path.join(VENV, "bin", "python")
@@ -67,7 +67,7 @@ def ensure_venv():
         print(f"creating {VENV} (mitsuba, embreex, numpy)", file=sys.stderr)
         subprocess.run([sys.executable, "-m", "venv", VENV], check=True)
         subprocess.run([python, "-m", "pip", "install", "-q", "mitsuba", "embreex", "numpy"], check=True)
-    os.execv(python, [python, os.path.abspath(__file__)] + sys.argv[1:])
+    os.execv(python, [python, os.path.abspath(script)] + sys.argv[1:])
 
 
 def llvm_environment():
