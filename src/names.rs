@@ -56,6 +56,8 @@ pub mod flag {
     pub const ENVMAP_COMPENSATION: &str = "envmap-compensation";
     /// `--light-select`.
     pub const LIGHT_SELECT: &str = "light-select";
+    /// `--ris-candidates`.
+    pub const RIS_CANDIDATES: &str = "ris-candidates";
     /// `--sampler`.
     pub const SAMPLER: &str = "sampler";
     /// `--spp`.

@@ -84,16 +84,27 @@ fn mis_matches_lambert_for_every_heuristic_and_sample_count() {
                     0.0,
                 )
             };
-            for (i, mis) in every_mis().into_iter().enumerate() {
-                let est =
-                    Estimator::new(&scene, EstimatorKind::Mis, LightSelect::Uniform).with_mis(mis);
-                let (mean, se) = estimate(&scene, &est, &hit, 100_000, 7 + i as u64);
+            // Every MIS variant, with plain light sampling and with light samples resampled
+            // from 4 candidates (RIS); and the light estimator resampling 1, 4 or 16.
+            let mut estimators: Vec<(String, Estimator)> = Vec::new();
+            for mis in every_mis() {
+                for select in [LightSelect::Uniform, LightSelect::Ris] {
+                    let est = Estimator::new(&scene, EstimatorKind::Mis, select)
+                        .with_mis(mis)
+                        .with_ris_candidates(4);
+                    estimators.push((format!("{select} {mis:?}"), est));
+                }
+            }
+            for m in [1, 4, 16] {
+                let est = Estimator::new(&scene, EstimatorKind::Light, LightSelect::Ris)
+                    .with_ris_candidates(m);
+                estimators.push((format!("light ris M={m}"), est));
+            }
+            for (i, (name, est)) in estimators.iter().enumerate() {
+                let (mean, se) = estimate(&scene, est, &hit, 100_000, 7 + i as u64);
                 let z = (mean - exact) / (se * se + exact_se * exact_se).sqrt().max(1e-12);
-                println!(
-                    "glossy {glossy} {} N={} M={} at {x}: {mean:.5} vs {exact:.5} (z = {z:+.2})",
-                    mis.heuristic, mis.light_samples, mis.bsdf_samples
-                );
-                assert!(z.abs() < 4.0, "{mis:?} at {x}: {mean} vs {exact}, z = {z}");
+                println!("glossy {glossy} {name} at {x}: {mean:.5} vs {exact:.5} (z = {z:+.2})");
+                assert!(z.abs() < 4.0, "{name} at {x}: {mean} vs {exact}, z = {z}");
             }
         }
     }

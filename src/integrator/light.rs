@@ -18,7 +18,11 @@ pub(super) fn estimate(ctx: &Context<'_>, src: &mut impl Uniform) -> Spectrum {
         hit,
         material,
         w_out,
+        ..
     } = *ctx;
+    if let Some(m) = ctx.ris {
+        return super::ris::estimate(ctx, src, m);
+    }
     let u_select = src.next_1d();
     let u_point = src.next_2d();
     let Some(sel) = selector.select(at, u_select) else {
@@ -35,16 +39,7 @@ pub(super) fn estimate(ctx: &Context<'_>, src: &mut impl Uniform) -> Spectrum {
         return Spectrum::ZERO;
     }
     // Point lights and lights at infinity have no surface point to aim a segment at.
-    let occluded = if ls.delta || ls.distance.is_infinite() {
-        scene
-            .geometry
-            .direction_occluded(hit.p, hit.ng, ls.w_in, ls.distance)
-    } else {
-        scene
-            .geometry
-            .segment_occluded(hit.p, hit.ng, ls.point, ls.normal)
-    };
-    if occluded {
+    if ctx.occluded(&ls) {
         return Spectrum::ZERO;
     }
     f * ls.radiance / (ls.pdf * sel.pmf)

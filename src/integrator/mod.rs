@@ -7,6 +7,9 @@
 mod directional;
 mod light;
 pub mod mis;
+mod ris;
+
+pub use crate::settings::{DEFAULT_RIS_CANDIDATES, MAX_RIS_CANDIDATES};
 
 pub use mis::{MisHeuristic, MisSettings};
 
@@ -15,7 +18,7 @@ use glam::Vec3;
 use crate::bsdf::{Bsdf, Material};
 use crate::geometry::{NO_LIGHT, Ray, SurfaceHit};
 use crate::light::select::{LightSelect, Selector};
-use crate::light::{LightStrategy, ShadingPoint};
+use crate::light::{LightSample, LightStrategy, ShadingPoint};
 use crate::math::{Frame, Spectrum};
 use crate::sampling::Uniform;
 use crate::scene::Scene;
@@ -33,17 +36,29 @@ pub struct Estimator {
     pub mis: MisSettings,
     /// How every light is sampled (per-shape strategy, environment compensation).
     pub lights: LightStrategy,
+    /// Candidates per light sample under resampled importance sampling (light selection
+    /// `ris`); `None` for the other selectors.
+    pub ris: Option<u32>,
 }
 
 impl Estimator {
-    /// The estimator `kind` for `scene`, choosing lights with `select`.
+    /// The estimator `kind` for `scene`, choosing lights with `select` (`ris` resamples
+    /// [`DEFAULT_RIS_CANDIDATES`] candidates; see [`Estimator::with_ris_candidates`]).
     pub fn new(scene: &Scene, kind: EstimatorKind, select: LightSelect) -> Estimator {
         Estimator {
             kind,
             selector: Selector::new(select, &scene.lights),
             mis: MisSettings::default(),
             lights: LightStrategy::default(),
+            ris: (select == LightSelect::Ris).then_some(DEFAULT_RIS_CANDIDATES),
         }
+    }
+
+    /// The same estimator resampling light samples from `m` candidates when its light
+    /// selection is `ris` (no effect otherwise).
+    pub fn with_ris_candidates(mut self, m: u32) -> Estimator {
+        self.ris = self.ris.map(|_| m);
+        self
     }
 
     /// The same estimator sampling lights with `lights`.
@@ -111,6 +126,7 @@ impl Estimator {
             hit,
             material,
             w_out: w_out_local,
+            ris: self.ris,
         };
         match self.kind {
             EstimatorKind::Light => light::estimate(&ctx, src),
@@ -132,6 +148,21 @@ struct Context<'a> {
     material: &'a Material,
     /// w_out in the local shading frame.
     w_out: Vec3,
+    /// Light samples are resampled from this many candidates (RIS), if set.
+    ris: Option<u32>,
+}
+
+impl Context<'_> {
+    /// Whether the shadow ray from the shading point to the light sample `ls` is blocked
+    /// (point lights and lights at infinity have no surface point to aim a segment at).
+    fn occluded(&self, ls: &LightSample) -> bool {
+        let geometry = &self.scene.geometry;
+        if ls.delta || ls.distance.is_infinite() {
+            geometry.direction_occluded(self.hit.p, self.hit.ng, ls.w_in, ls.distance)
+        } else {
+            geometry.segment_occluded(self.hit.p, self.hit.ng, ls.point, ls.normal)
+        }
+    }
 }
 
 /// Radiance emitted by the surface at `hit` towards `w` (world direction, pointing away

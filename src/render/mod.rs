@@ -74,7 +74,8 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
     // The light strategy travels with the estimator to every light it asks.
     let estimator = Estimator::new(scene, settings.estimator, settings.light_select)
         .with_mis(settings.mis)
-        .with_light_strategy(settings.light_strategy());
+        .with_light_strategy(settings.light_strategy())
+        .with_ris_candidates(settings.ris_candidates);
     let (first, last) = settings.pass.sample_range(settings.spp);
     let mut film = Film::new(w, h);
     let tiles = tiles(w, h);

@@ -4,8 +4,8 @@
 use crate::image::Filter;
 use crate::scene::{Camera, Scene};
 use crate::settings::{
-    EstimatorKind, LightSampling, LightSelect, LightStrategy, MAX_PIXELS, MisSettings, Pass,
-    RenderPatch, SamplerKind, SettingsError,
+    DEFAULT_RIS_CANDIDATES, EstimatorKind, LightSampling, LightSelect, LightStrategy, MAX_PIXELS,
+    MisSettings, Pass, RenderPatch, SamplerKind, SettingsError,
 };
 
 /// A complete description of how to render a scene.
@@ -19,6 +19,8 @@ pub struct RenderSettings {
     pub light_sampling: LightSampling,
     /// Light selection.
     pub light_select: LightSelect,
+    /// Candidates per light sample when `light_select` is `ris`.
+    pub ris_candidates: u32,
     /// Random number source.
     pub sampler: SamplerKind,
     /// Samples per pixel (of the whole render, over all passes).
@@ -63,6 +65,7 @@ impl RenderSettings {
             },
             light_sampling: p.light_sampling.unwrap_or(LightSampling::Best),
             light_select: p.light_select.unwrap_or(LightSelect::Bvh),
+            ris_candidates: p.ris_candidates.unwrap_or(DEFAULT_RIS_CANDIDATES),
             sampler: p.sampler.unwrap_or(SamplerKind::Sobol),
             spp: p.spp.unwrap_or(scene.spp),
             seed: p.seed.unwrap_or(0),
@@ -114,6 +117,7 @@ impl RenderSettings {
             bsdf_samples: Some(self.mis.bsdf_samples),
             light_sampling: Some(self.light_sampling),
             light_select: Some(self.light_select),
+            ris_candidates: (self.light_select == LightSelect::Ris).then_some(self.ris_candidates),
             sampler: Some(self.sampler),
             spp: Some(self.spp),
             seed: Some(self.seed),

@@ -77,8 +77,18 @@ named_enum! {
         /// A light BVH with importance from distance and orientation bounds, O(log n)
         /// (Conty Estevez & Kulla 2018).
         Bvh => "bvh",
+        /// Resampled importance sampling (Talbot et al. 2005): `--ris-candidates` light
+        /// samples drawn with the light BVH, one kept ∝ its unshadowed contribution
+        /// f·cos·Le.
+        Ris => "ris",
     }
 }
+
+/// Candidates per light sample of `--light-select ris` when none is given: the best of
+/// 2, 4 and 8 at equal time on `shirley-100` and `many-lights?n=1000` (BENCHMARKS.md).
+pub const DEFAULT_RIS_CANDIDATES: u32 = 2;
+/// The most candidates `--light-select ris` draws per light sample.
+pub const MAX_RIS_CANDIDATES: u32 = 64;
 
 named_enum! {
     /// Which sampler a render uses; parsed from and shown as its CLI name.

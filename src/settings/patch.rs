@@ -7,7 +7,9 @@
 use std::fmt;
 use std::str::FromStr;
 
-use super::{EstimatorKind, LightSampling, LightSelect, MisHeuristic, Pass, SamplerKind};
+use super::{
+    EstimatorKind, LightSampling, LightSelect, MAX_RIS_CANDIDATES, MisHeuristic, Pass, SamplerKind,
+};
 use crate::names::flag;
 
 /// The most samples per estimate the `mis` estimator takes per strategy.
@@ -124,8 +126,10 @@ render_patch! {
     bsdf_samples: u32 = flag::BSDF_SAMPLES,
     /// Area-light sampling: area, visible-area, solid-angle, geometric, best (per shape).
     light_sampling: LightSampling = flag::LIGHT_SAMPLING,
-    /// Light selection among many lights: uniform, power, adaptive, bvh.
+    /// Light selection among many lights: uniform, power, adaptive, bvh, ris.
     light_select: LightSelect = flag::LIGHT_SELECT,
+    /// Candidates per light sample of `--light-select ris` (1 to 64).
+    ris_candidates: u32 = flag::RIS_CANDIDATES,
     /// Sampler: independent, stratified, sobol.
     sampler: SamplerKind = flag::SAMPLER,
     /// Samples per pixel (default: the scene's).
@@ -170,6 +174,12 @@ impl RenderPatch {
         let ranges = [
             (flag::LIGHT_SAMPLES, self.light_samples, 1, MAX_MIS_SAMPLES),
             (flag::BSDF_SAMPLES, self.bsdf_samples, 1, MAX_MIS_SAMPLES),
+            (
+                flag::RIS_CANDIDATES,
+                self.ris_candidates,
+                1,
+                MAX_RIS_CANDIDATES,
+            ),
             (flag::SPP, self.spp, 1, u32::MAX),
             (flag::WIDTH, self.width, 1, MAX_SIDE),
             (flag::HEIGHT, self.height, 1, MAX_SIDE),

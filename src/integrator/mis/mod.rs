@@ -70,6 +70,9 @@ fn light_sample(
     scale: impl Fn(f32, f32) -> f32,
     delta_scale: f32,
 ) -> Spectrum {
+    if let Some(m) = ctx.ris {
+        return resampled_light_sample(ctx, src, m, scale, delta_scale);
+    }
     let u_select = src.next_1d();
     let u_point = src.next_2d();
     let Some(sel) = ctx.selector.select(ctx.at, u_select) else {
@@ -84,13 +87,7 @@ fn light_sample(
     if f == Spectrum::ZERO {
         return Spectrum::ZERO;
     }
-    let geometry = &ctx.scene.geometry;
-    let occluded = if ls.delta || ls.distance.is_infinite() {
-        geometry.direction_occluded(ctx.hit.p, ctx.hit.ng, ls.w_in, ls.distance)
-    } else {
-        geometry.segment_occluded(ctx.hit.p, ctx.hit.ng, ls.point, ls.normal)
-    };
-    if occluded {
+    if ctx.occluded(&ls) {
         return Spectrum::ZERO;
     }
     let factor = if ls.delta {
@@ -101,6 +98,32 @@ fn light_sample(
         scale(p_light, p_bsdf)
     };
     f * ls.radiance * factor
+}
+
+/// One light sample resampled from `m` candidates (RIS, see [`super::ris`]): f·cos·Le·W
+/// in place of f·cos·Le/p, weighted against BSDF sampling with the source density p̃ that
+/// BSDF-sampled hits also ask for. `scale(p̃, p_bsdf)·p̃` is the MIS weight over the sample
+/// count (or the choice probability) for every heuristic.
+fn resampled_light_sample(
+    ctx: &Context<'_>,
+    src: &mut impl Uniform,
+    m: u32,
+    scale: impl Fn(f32, f32) -> f32,
+    delta_scale: f32,
+) -> Spectrum {
+    let Some(r) = super::ris::resample(ctx, src, m) else {
+        return Spectrum::ZERO;
+    };
+    if ctx.occluded(&r.ls) {
+        return Spectrum::ZERO;
+    }
+    let weight = if r.ls.delta {
+        delta_scale
+    } else {
+        let p_bsdf = ctx.material.pdf(r.w_in, ctx.w_out);
+        scale(r.p_source, p_bsdf) * r.p_source
+    };
+    r.f * r.ls.radiance * (r.weight * weight)
 }
 
 /// One BSDF sample: `scale(p_bsdf, p_light)` as in [`light_sample`]; `delta_scale`

@@ -73,7 +73,8 @@ impl Selector {
                 Selector::Power(PowerSelector::new(&powers))
             }
             LightSelect::Adaptive => Selector::Adaptive(AdaptiveSelector::new(lights)),
-            LightSelect::Bvh => Selector::Bvh(BvhSelector::new(lights)),
+            // Resampling draws its candidates from the light BVH (see `integrator::ris`).
+            LightSelect::Bvh | LightSelect::Ris => Selector::Bvh(BvhSelector::new(lights)),
         }
     }
 }
