@@ -113,6 +113,14 @@ pub const FIGURES: &[Figure] = &[
             reference_spp: 1024,
         }]),
     },
+    Figure {
+        name: "ris",
+        description: "light BVH vs resampled importance sampling (Talbot 2005) from 2, 4 and 8 BVH candidates, light estimator at equal spp",
+        kind: FigureKind::Panels(&[
+            ris_panel("shirley-100", "builtin:shirley-100"),
+            ris_panel("many-lights-1000", "builtin:many-lights?n=1000"),
+        ]),
+    },
 ];
 
 const fn shape_panel(title: &'static str, scene: &'static str) -> Panel {
@@ -128,6 +136,31 @@ const fn shape_panel(title: &'static str, scene: &'static str) -> Panel {
         ],
         spp: 16,
         reference: "--estimator mis --light-sampling solid-angle",
+        reference_spp: 1024,
+    }
+}
+
+const fn ris_panel(title: &'static str, scene: &'static str) -> Panel {
+    Panel {
+        title,
+        scene,
+        strategies: &[
+            ("bvh", "--estimator light --light-select bvh"),
+            (
+                "ris M=2",
+                "--estimator light --light-select ris --ris-candidates 2",
+            ),
+            (
+                "ris M=4",
+                "--estimator light --light-select ris --ris-candidates 4",
+            ),
+            (
+                "ris M=8",
+                "--estimator light --light-select ris --ris-candidates 8",
+            ),
+        ],
+        spp: 16,
+        reference: "--estimator mis --light-select bvh",
         reference_spp: 1024,
     }
 }
