@@ -7,7 +7,7 @@ use clap::Args;
 use super::CliError;
 use super::lab_args::LabRenderArgs;
 use super::render::{STOP, install_stop_handler};
-use crate::lab::figure::{FIGURES, FigureOptions, find, plan, run_figure};
+use crate::lab::figure::{FIGURES, FigureOptions, find, run_figure};
 
 /// Arguments of `figure`.
 #[derive(Args, Debug)]
@@ -48,11 +48,7 @@ pub fn run(args: &FigureArgs) -> Result<(), CliError> {
     }
     if args.list {
         for f in FIGURES {
-            let status = match plan(f, &options) {
-                Ok(_) => "ready".to_string(),
-                Err(e) => e.to_string(),
-            };
-            println!("{:14} {}\n{:14} ({status})", f.name, f.description, "");
+            println!("{:14} {}", f.name, f.description);
         }
         return Ok(());
     }
