@@ -18,7 +18,7 @@
 use glam::{Vec2, Vec3};
 
 use super::area::{EmitterKind, LightPoint, LightSampling, light_sample, uniform_area_pdf};
-use super::area::{hit_plane, safe_spherical_triangle};
+use super::area::{cosine_weights, hit_plane, safe_spherical_triangle, warped_pdf, warped_sample};
 use super::{LightSample, ShadingPoint};
 use crate::math::{PI, Spectrum, spectrum::luminance};
 use crate::sampling::rng::hash_words;
@@ -129,8 +129,12 @@ impl PolygonLight {
         sampling: LightSampling,
     ) -> Option<LightSample> {
         let n = self.polygon.normal();
-        let point = if Self::strategy(sampling) == LightSampling::SolidAngle {
-            self.sample_solid_angle(at, u)?
+        let strategy = Self::strategy(sampling);
+        let point = if matches!(
+            strategy,
+            LightSampling::SolidAngle | LightSampling::SolidAngleCos
+        ) {
+            self.sample_solid_angle(at, u, strategy)?
         } else {
             let (y, _) = self.polygon.sample_rejection(&mut ReusedUniform::new(u));
             LightPoint {
@@ -144,7 +148,12 @@ impl PolygonLight {
 
     /// A triangle ∝ its solid angle, then a direction uniform in it (or a point uniform by
     /// area where its spherical triangle is unsafe).
-    fn sample_solid_angle(&self, at: &ShadingPoint, u: Vec2) -> Option<LightPoint> {
+    fn sample_solid_angle(
+        &self,
+        at: &ShadingPoint,
+        u: Vec2,
+        strategy: LightSampling,
+    ) -> Option<LightPoint> {
         let total = self.total_solid_angle(at.p);
         if !(total > 0.0 && total.is_finite()) {
             return None;
@@ -168,7 +177,10 @@ impl PolygonLight {
         let [a, b, c] = self.triangle(chosen);
         let n = self.polygon.normal();
         let y = match safe_spherical_triangle(at.p, a, b, c) {
-            Some(st) => hit_plane(at.p, st.sample(u).0, a, n)?,
+            Some(st) => {
+                let weights = cosine_weights(strategy, at, [a, b, c]);
+                hit_plane(at.p, warped_sample(&st, weights, u).0, a, n)?
+            }
             None => {
                 let bary = square_to_triangle_sqrt(u);
                 a + bary.x * (b - a) + bary.y * (c - a)
@@ -177,21 +189,32 @@ impl PolygonLight {
         Some(LightPoint {
             y,
             ny: n,
-            pdf: self.solid_angle_pdf(at, y, n),
+            pdf: self.solid_angle_pdf(at, y, n, strategy),
         })
     }
 
     /// Density per steradian at `at` of the direction towards `y` (a point of the polygon
     /// with normal `ny`) with strategy `sampling` (resolved for polygons).
     pub fn pdf(&self, at: &ShadingPoint, y: Vec3, ny: Vec3, sampling: LightSampling) -> f32 {
-        if Self::strategy(sampling) != LightSampling::SolidAngle {
+        let strategy = Self::strategy(sampling);
+        if !matches!(
+            strategy,
+            LightSampling::SolidAngle | LightSampling::SolidAngleCos
+        ) {
             return uniform_area_pdf(at.p, y, ny, self.polygon.area());
         }
-        self.solid_angle_pdf(at, y, ny)
+        self.solid_angle_pdf(at, y, ny, strategy)
     }
 
-    /// The density of [`PolygonLight::sample_solid_angle`].
-    fn solid_angle_pdf(&self, at: &ShadingPoint, y: Vec3, ny: Vec3) -> f32 {
+    /// The density of [`PolygonLight::sample_solid_angle`]: the triangle's choice
+    /// probability Ω_i/ΣΩ times its own density 1/Ω_i (uniform) or warped/Ω_i.
+    fn solid_angle_pdf(
+        &self,
+        at: &ShadingPoint,
+        y: Vec3,
+        ny: Vec3,
+        strategy: LightSampling,
+    ) -> f32 {
         let total = self.total_solid_angle(at.p);
         if !(total > 0.0 && total.is_finite()) {
             return 0.0;
@@ -199,7 +222,14 @@ impl PolygonLight {
         let i = self.triangle_containing(y);
         let [a, b, c] = self.triangle(i);
         match safe_spherical_triangle(at.p, a, b, c) {
-            Some(_) => (1.0 / total) as f32,
+            Some(st) => match cosine_weights(strategy, at, [a, b, c]) {
+                None => (1.0 / total) as f32,
+                // (Ω_i/ΣΩ)·bilinear/Ω_i = bilinear/ΣΩ.
+                weights => {
+                    let warped = warped_pdf(&st, weights, (y - at.p).normalize());
+                    (warped as f64 * st.solid_angle() as f64 / total) as f32
+                }
+            },
             None => {
                 let choice = (self.solid_angle(at.p, i) / total) as f32;
                 choice * uniform_area_pdf(at.p, y, ny, triangle_area(a, b, c))

@@ -60,6 +60,9 @@ named_enum! {
         SolidAngle => "solid-angle",
         /// Spheres: ∝ cos θx·cos θy/d² (lecture p₄), i.e. ∝ cos θx in solid angle.
         Geometric => "geometric",
+        /// Rectangles, triangles and polygons: solid-angle sampling after a bilinear warp
+        /// of the square weighted by cos θ at the corners (Hart et al. 2020), ≈ ∝ cos θx.
+        SolidAngleCos => "solid-angle-cos",
         /// The lowest-variance strategy of each shape.
         Best => "best",
     }

@@ -37,9 +37,9 @@ pub const STRATEGIES: [(TestShape, &[LightSampling]); 5] = {
             TestShape::Sphere,
             &[Area, VisibleArea, SolidAngle, Geometric],
         ),
-        (TestShape::Rectangle, &[Area, SolidAngle]),
-        (TestShape::Triangle, &[Area, SolidAngle]),
-        (TestShape::Polygon, &[Area, SolidAngle]),
+        (TestShape::Rectangle, &[Area, SolidAngle, SolidAngleCos]),
+        (TestShape::Triangle, &[Area, SolidAngle, SolidAngleCos]),
+        (TestShape::Polygon, &[Area, SolidAngle, SolidAngleCos]),
         (TestShape::Disk, &[Area]),
     ]
 };

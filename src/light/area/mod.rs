@@ -6,13 +6,15 @@
 //! Every strategy gives its density per steradian at the shading point; strategies that
 //! draw points by area convert once, through [`area_to_solid_angle`](super::area_to_solid_angle).
 
+mod cosine_warp;
 mod disk;
 mod rectangle;
 mod sphere;
 mod sphere_geometric;
 mod triangle;
 
-pub(crate) use triangle::safe_spherical_triangle;
+pub(crate) use cosine_warp::{pdf as warped_pdf, sample as warped_sample};
+pub(crate) use triangle::{cosine_weights, safe_spherical_triangle};
 
 use glam::{Vec2, Vec3};
 
@@ -65,8 +67,11 @@ impl LightSampling {
             (Best, _) => SolidAngle,
             (Area, _) => Area,
             (VisibleArea | Geometric, EmitterKind::Sphere) => self,
-            (SolidAngle, EmitterKind::Disk) => Area,
+            (SolidAngle | SolidAngleCos, EmitterKind::Disk) => Area,
             (SolidAngle, _) => SolidAngle,
+            // The cone of a sphere has no square corners to weight: uniform in it.
+            (SolidAngleCos, EmitterKind::Sphere) => SolidAngle,
+            (SolidAngleCos, _) => SolidAngleCos,
             (VisibleArea | Geometric, _) => Area,
         }
     }

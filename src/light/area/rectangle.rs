@@ -1,26 +1,40 @@
-//! Rectangle emitters: `area` (uniform point, lecture p = 1/A) and `solid-angle`
-//! (uniform direction in the spherical rectangle, Ureña, Fajardo & King 2013), which
+//! Rectangle emitters: `area` (uniform point, lecture p = 1/A), `solid-angle` (uniform
+//! direction in the spherical rectangle, Ureña, Fajardo & King 2013) and
+//! `solid-angle-cos` (the same after a bilinear cosine warp, Hart et al. 2020), which
 //! falls back to `area` where the spherical rectangle is too small to be sampled safely
 //! ([`SphericalRectangle::new`] returns `None`). The fall-back depends only on the
 //! shading point, so `sample` and `pdf` always agree on it.
 
 use glam::{Vec2, Vec3};
 
-use super::{LightPoint, LightSampling, hit_plane, uniform_area_pdf};
+use super::{LightPoint, LightSampling, cosine_warp, hit_plane, uniform_area_pdf};
 use crate::geometry::shape::Rectangle;
 use crate::light::ShadingPoint;
 use crate::sampling::warp::SphericalRectangle;
 
-/// The spherical rectangle seen from `x`, when solid-angle sampling applies there.
+/// The spherical rectangle seen from `at` when solid-angle sampling applies there, and
+/// the cosine weights of its corners under `solid-angle-cos`.
 #[inline]
-fn spherical(r: &Rectangle, strategy: LightSampling, x: Vec3) -> Option<SphericalRectangle> {
-    if strategy != LightSampling::SolidAngle {
+fn spherical(
+    r: &Rectangle,
+    strategy: LightSampling,
+    at: &ShadingPoint,
+) -> Option<(SphericalRectangle, Option<[f32; 4]>)> {
+    if !matches!(
+        strategy,
+        LightSampling::SolidAngle | LightSampling::SolidAngleCos
+    ) {
         return None;
     }
-    SphericalRectangle::new(x, r.o, r.ea, r.eb)
+    let sr = SphericalRectangle::new(at.p, r.o, r.ea, r.eb)?;
+    let corners = [r.o, r.o + r.ea, r.o + r.eb, r.o + r.ea + r.eb];
+    let weights = (strategy == LightSampling::SolidAngleCos)
+        .then(|| cosine_warp::corner_cosines(at.p, at.n, corners));
+    Some((sr, weights))
 }
 
-/// Draws a point of `r` with `strategy` (resolved: `area` or `solid-angle`).
+/// Draws a point of `r` with `strategy` (resolved: `area`, `solid-angle` or
+/// `solid-angle-cos`).
 #[inline]
 pub(super) fn sample(
     r: &Rectangle,
@@ -28,9 +42,9 @@ pub(super) fn sample(
     at: &ShadingPoint,
     u: Vec2,
 ) -> Option<LightPoint> {
-    match spherical(r, strategy, at.p) {
-        Some(sr) => {
-            let (w, pdf) = sr.sample(u);
+    match spherical(r, strategy, at) {
+        Some((sr, weights)) => {
+            let (w, pdf) = cosine_warp::sample(&sr, weights, u);
             let y = hit_plane(at.p, w, r.o, r.normal)?;
             Some(LightPoint {
                 y,
@@ -58,9 +72,10 @@ pub(super) fn pdf(
     y: Vec3,
     ny: Vec3,
 ) -> f32 {
-    match spherical(r, strategy, at.p) {
+    match spherical(r, strategy, at) {
         // y lies on the rectangle, so its direction is inside the spherical rectangle.
-        Some(sr) => 1.0 / sr.solid_angle(),
+        Some((sr, None)) => 1.0 / sr.solid_angle(),
+        Some((sr, weights)) => cosine_warp::pdf(&sr, weights, (y - at.p).normalize()),
         None => uniform_area_pdf(at.p, y, ny, r.area()),
     }
 }

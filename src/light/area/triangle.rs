@@ -1,6 +1,7 @@
 //! Triangle emitters (and so each triangle of an emitting mesh): `area` (uniform point by
-//! folding, as on the lecture's slide) and `solid-angle` (uniform direction in the
-//! spherical triangle, Arvo 1995). Solid-angle sampling falls back to `area` where the
+//! folding, as on the lecture's slide), `solid-angle` (uniform direction in the
+//! spherical triangle, Arvo 1995) and `solid-angle-cos` (the same after a bilinear cosine
+//! warp, Hart et al. 2020). Solid-angle sampling falls back to `area` where the
 //! spherical triangle is numerically unsafe: smaller than
 //! [`MIN_SOLID_ANGLE`](crate::sampling::warp::MIN_SOLID_ANGLE) (far or edge-on: the
 //! constructor returns `None`) or within [`MAX_SOLID_ANGLE_FRACTION`] of a hemisphere (the
@@ -9,7 +10,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::{LightPoint, LightSampling, hit_plane, uniform_area_pdf};
+use super::{LightPoint, LightSampling, cosine_warp, hit_plane, uniform_area_pdf};
 use crate::geometry::shape::Triangle;
 use crate::light::ShadingPoint;
 use crate::math::PI;
@@ -30,14 +31,35 @@ pub(crate) fn safe_spherical_triangle(
         .filter(|st| st.solid_angle() <= MAX_SOLID_ANGLE_FRACTION * 2.0 * PI)
 }
 
-/// The spherical triangle of `t` seen from `x`, when solid-angle sampling applies there.
+/// The spherical triangle of `t` seen from `at` when solid-angle sampling applies there,
+/// and the cosine weights of its corners under `solid-angle-cos`.
 #[inline]
-fn spherical(t: &Triangle, strategy: LightSampling, x: Vec3) -> Option<SphericalTriangle> {
-    if strategy != LightSampling::SolidAngle {
+fn spherical(
+    t: &Triangle,
+    strategy: LightSampling,
+    at: &ShadingPoint,
+) -> Option<(SphericalTriangle, Option<[f32; 4]>)> {
+    if !matches!(
+        strategy,
+        LightSampling::SolidAngle | LightSampling::SolidAngleCos
+    ) {
         return None;
     }
     let [p0, p1, p2] = t.vertices();
-    safe_spherical_triangle(x, p0, p1, p2)
+    let st = safe_spherical_triangle(at.p, p0, p1, p2)?;
+    Some((st, cosine_weights(strategy, at, [p0, p1, p2])))
+}
+
+/// The cosine weights of a spherical triangle's square corners under `solid-angle-cos`
+/// (Arvo's map sends (0, 0) and (1, 0) to p1, (0, 1) to p0 and (1, 1) to p2).
+#[inline]
+pub(crate) fn cosine_weights(
+    strategy: LightSampling,
+    at: &ShadingPoint,
+    [p0, p1, p2]: [Vec3; 3],
+) -> Option<[f32; 4]> {
+    (strategy == LightSampling::SolidAngleCos)
+        .then(|| cosine_warp::corner_cosines(at.p, at.n, [p1, p1, p0, p2]))
 }
 
 /// A uniform point of `t` by folding the unit square onto the triangle, and its normal.
@@ -47,7 +69,8 @@ pub(super) fn sample_area(t: &Triangle, u: Vec2) -> (Vec3, Vec3) {
     (t.p0 + b.x * t.e1 + b.y * t.e2, t.normal())
 }
 
-/// Draws a point of `t` with `strategy` (resolved: `area` or `solid-angle`).
+/// Draws a point of `t` with `strategy` (resolved: `area`, `solid-angle` or
+/// `solid-angle-cos`).
 #[inline]
 pub(super) fn sample(
     t: &Triangle,
@@ -56,9 +79,9 @@ pub(super) fn sample(
     u: Vec2,
 ) -> Option<LightPoint> {
     let ny = t.normal();
-    match spherical(t, strategy, at.p) {
-        Some(st) => {
-            let (w, pdf) = st.sample(u);
+    match spherical(t, strategy, at) {
+        Some((st, weights)) => {
+            let (w, pdf) = cosine_warp::sample(&st, weights, u);
             let y = hit_plane(at.p, w, t.p0, ny)?;
             Some(LightPoint { y, ny, pdf })
         }
@@ -82,8 +105,9 @@ pub(super) fn pdf(
     y: Vec3,
     ny: Vec3,
 ) -> f32 {
-    match spherical(t, strategy, at.p) {
-        Some(st) => 1.0 / st.solid_angle(),
+    match spherical(t, strategy, at) {
+        Some((st, None)) => 1.0 / st.solid_angle(),
+        Some((st, weights)) => cosine_warp::pdf(&st, weights, (y - at.p).normalize()),
         None => uniform_area_pdf(at.p, y, ny, t.area()),
     }
 }

@@ -173,8 +173,24 @@ fn basic_entries() -> Vec<Entry> {
             ),
             boxed(|x: Vec3| Vec2::new(xi_squared_to_uniform(x.x), 0.0)),
         ),
+        with_inverse(
+            entry(
+                "bilinear",
+                "density ∝ bilinear weights 0.05, 1, 2, 0.5 at the corners (Hart et al. 2020)",
+                Domain::UNIT_SQUARE,
+                square(|u| {
+                    let (p, pdf) = square_to_bilinear(u, BILINEAR_TEST_WEIGHTS);
+                    (flat(p), pdf)
+                }),
+                boxed(|x: Vec3| bilinear_pdf(x.truncate(), BILINEAR_TEST_WEIGHTS)),
+            ),
+            boxed(|x: Vec3| bilinear_to_square(x.truncate(), BILINEAR_TEST_WEIGHTS)),
+        ),
     ]
 }
+
+/// Corner weights of the registry's bilinear row: uneven, one nearly zero.
+const BILINEAR_TEST_WEIGHTS: [f32; 4] = [0.05, 1.0, 2.0, 0.5];
 
 fn lobe_entries() -> Vec<Entry> {
     let mut list = Vec::new();

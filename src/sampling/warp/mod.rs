@@ -8,6 +8,7 @@
 //! ([`SphericalTriangle`], [`SphericalRectangle`]) and polygons ([`Polygon`]) are small
 //! structs built once per query, since they precompute angles or a triangulation.
 
+pub mod bilinear;
 pub mod cone;
 pub mod disk;
 pub mod ear_clipping;
@@ -21,6 +22,7 @@ pub mod spherical_triangle;
 pub mod triangle;
 pub mod xi_squared;
 
+pub use bilinear::*;
 pub use cone::*;
 pub use disk::*;
 pub use hemisphere::*;
