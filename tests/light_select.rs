@@ -186,7 +186,9 @@ fn check_scene(scene: &Scene, points: &[ShadingPoint], samples: usize, kinds: &[
                 "{}-{kind}-point{k}",
                 scene.name.replace(['?', ':', '='], "_")
             );
-            let may_lose = kind == LightSelect::Bvh;
+            // The BVH (and RIS, which draws its candidates with it) loses the mass of lights
+            // that cannot reach the point.
+            let may_lose = matches!(kind, LightSelect::Bvh | LightSelect::Ris);
             let result = selection_chi2(&selector, at, scene.lights.len(), samples, may_lose)
                 .and_then(|r| judge(&name, &r, alpha));
             if let Err(e) = result {
