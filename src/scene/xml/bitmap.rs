@@ -4,6 +4,7 @@
 use glam::{Affine2, Mat2, Vec2};
 
 use super::XmlError;
+use super::build::Context;
 use super::props::Props;
 use super::tree::Element;
 use crate::image::io::{read_image, srgb_to_linear};
@@ -13,8 +14,8 @@ use crate::scene::texture::{Texture, Wrap};
 /// Largest texture side accepted.
 const MAX_SIDE: u32 = 16384;
 
-/// Builds a bitmap texture; `warnings` receives unused properties.
-pub fn load_bitmap(el: &Element, warnings: &mut Vec<String>) -> Result<Texture, XmlError> {
+/// Builds a bitmap texture.
+pub fn load_bitmap(el: &Element, ctx: &mut Context<'_>) -> Result<Texture, XmlError> {
     let ty = el.required("type")?;
     if ty != "bitmap" {
         return Err(el.error(format!("texture \"{ty}\" is not supported (known: bitmap)")));
@@ -93,7 +94,7 @@ pub fn load_bitmap(el: &Element, warnings: &mut Vec<String>) -> Result<Texture, 
             path.display()
         )));
     }
-    p.unused(warnings);
+    ctx.finish(&p)?;
     Ok(Texture {
         width,
         height,

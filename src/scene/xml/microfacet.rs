@@ -27,7 +27,7 @@ fn roughness(el: &Element, p: &Props<'_>) -> Result<(MicrofacetType, f32), XmlEr
         )));
     }
     if au.is_nan() || au < 0.0 {
-        return Err(el.error(format!("alpha must be ≥ 0, not {au}")));
+        return Err(p.error_at("alpha", format!("alpha must be ≥ 0, not {au}")));
     }
     p.ignore("sample_visible");
     Ok((distribution, au))
@@ -49,7 +49,7 @@ fn ior(p: &Props<'_>, name: &str, default: f32) -> Result<f32, XmlError> {
     if v > 0.0 {
         Ok(v)
     } else {
-        Err(p.el.error(format!("{name} must be positive, not {v}")))
+        Err(p.error_at(name, format!("{name} must be positive, not {v}")))
     }
 }
 

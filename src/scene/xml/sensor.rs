@@ -16,6 +16,17 @@ use crate::sampling::SamplerKind;
 /// Largest film accepted (8192²): the film keeps ~40 bytes per pixel.
 const MAX_PIXELS: u64 = 1 << 26;
 
+/// `hdrfilm`'s format properties and their values in Mitsuba 3 (hdrfilm.cpp), the
+/// default first.
+const FILM_FORMATS: [(&str, &[&str]); 3] = [
+    (
+        "pixel_format",
+        &["rgb", "rgba", "luminance", "luminance_alpha", "xyz", "xyza"],
+    ),
+    ("component_format", &["float16", "float32", "uint32"]),
+    ("file_format", &["openexr", "exr", "rgbe", "hdr", "pfm"]),
+];
+
 /// What the `<sensor>` sets up.
 pub struct SensorSetup {
     pub camera: Camera,
@@ -40,7 +51,7 @@ pub fn build_sensor<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<Sensor
         return Err(el.error("missing <float name=\"fov\">"));
     }
     if !(fov > 0.0 && fov < 180.0) {
-        return Err(el.error(format!("fov must be in (0, 180) degrees, not {fov}")));
+        return Err(p.error_at("fov", format!("fov must be in (0, 180) degrees, not {fov}")));
     }
     let axis = p.string("fov_axis", "x")?;
     let near_clip = p.float("near_clip", 0.01)?;
@@ -55,11 +66,11 @@ pub fn build_sensor<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<Sensor
     let mut sampler = SamplerKind::Independent;
     let mut seed = 0;
     for c in p.nested() {
-        let c = ctx.resolve(c)?;
-        match c.tag.as_str() {
-            "film" => (width, height, filter) = build_film(ctx, c)?,
-            "sampler" => (sampler, spp, seed) = build_sampler(ctx, c)?,
-            other => return Err(c.error(format!("unexpected <{other}> inside <sensor>"))),
+        let c = ctx.resolve(c, &["film", "sampler"])?;
+        if c.tag == "film" {
+            (width, height, filter) = build_film(ctx, c)?;
+        } else {
+            (sampler, spp, seed) = build_sampler(ctx, c)?;
         }
     }
     let (w, h) = (width as f32, height as f32);
@@ -85,7 +96,7 @@ pub fn build_sensor<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<Sensor
     }
     let mut camera = Camera::new(m, 2.0 * tan_x.atan().to_degrees(), width, height);
     camera.near_clip = near_clip;
-    ctx.finish(&p);
+    ctx.finish(&p)?;
     Ok(SensorSetup {
         camera,
         spp,
@@ -111,15 +122,20 @@ fn build_film<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(u32, u32, F
             "image size {width}x{height} is out of range (1 to {MAX_PIXELS} pixels)"
         )));
     }
-    for ignored in ["pixel_format", "component_format", "file_format"] {
-        p.ignore(ignored);
+    // Checked against Mitsuba 3's hdrfilm values, then ignored: lightlab writes the
+    // format that `-o` names.
+    for (name, known) in FILM_FORMATS {
+        let v = p.string(name, known[0])?;
+        if !known.contains(&v.as_str()) {
+            return Err(p.error_at(
+                name,
+                format!("unknown {name} \"{v}\" (known: {})", known.join(", ")),
+            ));
+        }
     }
     let mut filter = Filter::GAUSSIAN;
     for c in p.nested() {
-        let c = ctx.resolve(c)?;
-        if c.tag != "rfilter" {
-            return Err(c.error("only an <rfilter> can be nested in <film>"));
-        }
+        let c = ctx.resolve(c, &["rfilter"])?;
         let ty = c.required("type")?;
         let fp = Props::new(c)?;
         filter = match ty {
@@ -139,9 +155,9 @@ fn build_film<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(u32, u32, F
             }
         };
         filter.validate().map_err(|e| c.error(e))?;
-        ctx.finish(&fp);
+        ctx.finish(&fp)?;
     }
-    ctx.finish(&p);
+    ctx.finish(&p)?;
     Ok((width, height, filter))
 }
 
@@ -169,7 +185,7 @@ fn build_sampler<'a>(
     }
     let seed = p.count("seed", 0, u32::MAX)? as u64;
     p.ignore("jitter");
-    ctx.finish(&p);
+    ctx.finish(&p)?;
     Ok((kind, spp, seed))
 }
 
@@ -221,6 +237,6 @@ pub fn build_integrator<'a>(
     if p.bool("hide_emitters", false)? {
         return Err(el.error("hide_emitters is not supported"));
     }
-    ctx.finish(&p);
+    ctx.finish(&p)?;
     Ok(mis)
 }

@@ -35,21 +35,17 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
     let mut material = None;
     let mut emission = None;
     for c in p.nested() {
-        let c = ctx.resolve(c)?;
-        match c.tag.as_str() {
-            "bsdf" => {
-                if material.is_some() {
-                    return Err(c.error("a shape takes one BSDF"));
-                }
-                material = Some(ctx.material(c)?);
+        let target = ctx.resolve(c, &["bsdf", "emitter"])?;
+        if target.tag == "bsdf" {
+            if material.is_some() {
+                return Err(c.error("a shape takes one BSDF"));
             }
-            "emitter" => {
-                if emission.is_some() {
-                    return Err(c.error("a shape takes one emitter"));
-                }
-                emission = Some(area_emitter(ctx, c)?);
+            material = Some(ctx.material(target)?);
+        } else {
+            if emission.is_some() {
+                return Err(c.error("a shape takes one emitter"));
             }
-            other => return Err(c.error(format!("unexpected <{other}> inside <shape>"))),
+            emission = Some(area_emitter(ctx, target)?);
         }
     }
     let material = match material {
@@ -72,11 +68,20 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
                 el.error("a sphere's to_world must be a uniform scale, rotation and translation")
             })?;
             if flip {
-                return Err(el.error("flip_normals on a sphere is not supported"));
+                return Err(p.error_at("flip_normals", "flip_normals on a sphere is not supported"));
             }
-            let r = (radius * scale).abs();
+            // Mitsuba 3 takes a negative radius as a sphere with inward normals; lightlab
+            // has no inward-facing sphere, so it refuses the radius rather than render a
+            // different scene.
+            let r = radius * scale;
             if r.is_nan() || r <= 0.0 {
-                return Err(el.error(format!("radius must be positive, not {radius}")));
+                return Err(p.error_at(
+                    "radius",
+                    format!(
+                        "radius must be positive, not {radius} (a negative radius means \
+                         inward normals in Mitsuba 3, which lightlab does not support)"
+                    ),
+                ));
             }
             let sphere = Sphere {
                 center: to_world.transform_point3(center),
@@ -166,7 +171,7 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
             )));
         }
     }
-    ctx.finish(&p);
+    ctx.finish(&p)?;
     Ok(())
 }
 
@@ -180,7 +185,7 @@ fn area_emitter<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<Emission, 
     }
     let p = Props::new(el)?;
     let radiance = p.emission("radiance", Spectrum::ONE)?;
-    ctx.finish(&p);
+    ctx.finish(&p)?;
     Ok(Emission::new(radiance))
 }
 
