@@ -214,9 +214,9 @@ fn write_outputs(
     notes.push(reference.description.clone());
     for r in results.iter().filter(|r| looks_biased(&r.error)) {
         notes.push(format!(
-            "warning: \"{}\" differs from the reference by {:+.2}% = {:+.1} standard errors: biased (or the reference is)",
+            "warning: \"{}\" differs from the reference by {} = {:+.1} standard errors: biased (or the reference is)",
             r.label,
-            100.0 * r.error.relative_bias,
+            r.error.relative_bias_percent(),
             r.error.bias_z().unwrap_or(0.0)
         ));
     }
@@ -327,8 +327,8 @@ pub fn results_table(results: &[StrategyResult]) -> Table {
                     format!("{:.4e}", r.error.rel_mse),
                     match r.error.bias_z() {
                         Some(z) => format!(
-                            "{:+.2}% ({:+.1}){}",
-                            100.0 * r.error.relative_bias,
+                            "{} ({:+.1}){}",
+                            r.error.relative_bias_percent(),
                             z,
                             if looks_biased(&r.error) {
                                 " biased"
@@ -336,7 +336,7 @@ pub fn results_table(results: &[StrategyResult]) -> Table {
                                 ""
                             }
                         ),
-                        None => format!("{:+.2}%", 100.0 * r.error.relative_bias),
+                        None => r.error.relative_bias_percent(),
                     },
                     format_efficiency(r.relative_efficiency),
                 ]

@@ -8,6 +8,7 @@ use super::build::Context;
 use super::props::Props;
 use super::tree::Element;
 use crate::image::io::{read_image, srgb_to_linear};
+use crate::image::limits::open_image;
 use crate::math::Spectrum;
 use crate::scene::texture::{Texture, Wrap};
 
@@ -65,7 +66,7 @@ pub fn load_bitmap(el: &Element, ctx: &mut Context<'_>) -> Result<Texture, XmlEr
             (img.width, img.height, img.rgb)
         }
         "png" | "jpg" | "jpeg" => {
-            let img = image::open(&path)
+            let img = open_image(&path)
                 .map_err(|e| el.error(format!("cannot read texture \"{}\": {e}", path.display())))?
                 .to_rgb8();
             let decode = |v: u8| {
