@@ -9,6 +9,7 @@ use glam::{Mat3, Mat4, Vec3};
 use super::XmlError;
 use super::tree::Element;
 use crate::math::Spectrum;
+use crate::scene::mesh_io::MAX_MAGNITUDE;
 
 /// Tags that hold a value rather than a nested plugin.
 const VALUE_TAGS: [&str; 10] = [
@@ -329,10 +330,13 @@ fn report(e: XmlError, lenient: bool, warnings: &mut Vec<String>) -> Result<(), 
     }
 }
 
-/// A finite float.
+/// A finite float of magnitude at most [`MAX_MAGNITUDE`].
 pub fn parse_float(c: &Element, v: &str) -> Result<f32, XmlError> {
     match v.trim().parse::<f32>() {
-        Ok(x) if x.is_finite() => Ok(x),
+        Ok(x) if x.abs() <= MAX_MAGNITUDE => Ok(x),
+        Ok(x) if x.is_finite() => Err(c.error(format!(
+            "\"{v}\" is out of range (±{MAX_MAGNITUDE:e}: larger values overflow f32 products)"
+        ))),
         _ => Err(c.error(format!("\"{v}\" is not a finite number"))),
     }
 }
