@@ -32,7 +32,8 @@ pub fn validate(mesh: &Mesh, path: &str) -> Result<(), String> {
     if !mesh
         .positions
         .iter()
-        .all(|p| p.abs().max_element() <= MAX_MAGNITUDE)
+        // `is_finite` first: `max_element` skips NaN.
+        .all(|p| p.is_finite() && p.abs().max_element() <= MAX_MAGNITUDE)
     {
         return Err(format!(
             "{path}: vertex positions are not all finite and within ±{MAX_MAGNITUDE:e}"

@@ -32,9 +32,10 @@ pub fn load_bitmap(el: &Element, ctx: &mut Context<'_>) -> Result<Texture, XmlEr
         "bilinear" => true,
         "nearest" => false,
         other => {
-            return Err(el.error(format!(
-                "unknown filter_type \"{other}\" (known: bilinear, nearest)"
-            )));
+            return Err(p.error_at(
+                "filter_type",
+                format!("unknown filter_type \"{other}\" (known: bilinear, nearest)"),
+            ));
         }
     };
     let wrap = match p.string("wrap_mode", "repeat")?.as_str() {
@@ -42,9 +43,10 @@ pub fn load_bitmap(el: &Element, ctx: &mut Context<'_>) -> Result<Texture, XmlEr
         "mirror" => Wrap::Mirror,
         "clamp" => Wrap::Clamp,
         other => {
-            return Err(el.error(format!(
-                "unknown wrap_mode \"{other}\" (known: repeat, mirror, clamp)"
-            )));
+            return Err(p.error_at(
+                "wrap_mode",
+                format!("unknown wrap_mode \"{other}\" (known: repeat, mirror, clamp)"),
+            ));
         }
     };
     let m = p.transform("to_uv")?;
@@ -62,12 +64,17 @@ pub fn load_bitmap(el: &Element, ctx: &mut Context<'_>) -> Result<Texture, XmlEr
         .to_ascii_lowercase();
     let (width, height, texels) = match ext.as_str() {
         "exr" | "pfm" => {
-            let img = read_image(&path).map_err(|e| el.error(e))?;
+            let img = read_image(&path).map_err(|e| p.error_at("filename", e))?;
             (img.width, img.height, img.rgb)
         }
         "png" | "jpg" | "jpeg" => {
             let img = open_image(&path)
-                .map_err(|e| el.error(format!("cannot read texture \"{}\": {e}", path.display())))?
+                .map_err(|e| {
+                    p.error_at(
+                        "filename",
+                        format!("cannot read texture \"{}\": {e}", path.display()),
+                    )
+                })?
                 .to_rgb8();
             let decode = |v: u8| {
                 let x = v as f32 / 255.0;

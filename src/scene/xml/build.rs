@@ -311,7 +311,7 @@ fn build_emitter<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
                 let scale = p.float("scale", 1.0)?;
                 let to_world = Mat3::from_mat4(p.transform("to_world")?);
                 Environment::from_file(&el.dir.join(&file), scale, to_world)
-                    .map_err(|e| el.error(e))?
+                    .map_err(|e| p.error_at("filename", e))?
             };
             ctx.builder.environment(env);
             ctx.has_environment = true;

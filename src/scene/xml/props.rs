@@ -330,12 +330,13 @@ fn report(e: XmlError, lenient: bool, warnings: &mut Vec<String>) -> Result<(), 
     }
 }
 
-/// A finite float of magnitude at most [`MAX_MAGNITUDE`].
+/// A finite float: zero, or of magnitude in [1/[`MAX_MAGNITUDE`], [`MAX_MAGNITUDE`]].
 pub fn parse_float(c: &Element, v: &str) -> Result<f32, XmlError> {
     match v.trim().parse::<f32>() {
-        Ok(x) if x.abs() <= MAX_MAGNITUDE => Ok(x),
+        Ok(x) if x == 0.0 || (1.0 / MAX_MAGNITUDE..=MAX_MAGNITUDE).contains(&x.abs()) => Ok(x),
         Ok(x) if x.is_finite() => Err(c.error(format!(
-            "\"{v}\" is out of range (±{MAX_MAGNITUDE:e}: larger values overflow f32 products)"
+            "\"{v}\" is out of range (0 or ±1e-9 to ±1e9: beyond, f32 products overflow or \
+             underflow)"
         ))),
         _ => Err(c.error(format!("\"{v}\" is not a finite number"))),
     }

@@ -85,14 +85,15 @@ pub fn build_sensor<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<Sensor
         "larger" if w < h => tan_half * w / h,
         "larger" => tan_half,
         other => {
-            return Err(el.error(format!(
-                "unknown fov_axis \"{other}\" (known: x, y, diagonal, smaller, larger)"
-            )));
+            return Err(p.error_at(
+                "fov_axis",
+                format!("unknown fov_axis \"{other}\" (known: x, y, diagonal, smaller, larger)"),
+            ));
         }
     };
     let m = Affine3A::from_mat4(to_world);
     if m.matrix3.determinant().abs() < 1e-12 {
-        return Err(el.error("sensor to_world is singular"));
+        return Err(p.error_at("to_world", "sensor to_world is singular"));
     }
     let mut camera = Camera::new(m, 2.0 * tan_x.atan().to_degrees(), width, height);
     camera.near_clip = near_clip;
@@ -181,7 +182,7 @@ fn build_sampler<'a>(
     let p = Props::new(el)?;
     let spp = p.count("sample_count", 4, 1 << 20)?;
     if spp == 0 {
-        return Err(el.error("sample_count must be at least 1"));
+        return Err(p.error_at("sample_count", "sample_count must be at least 1"));
     }
     let seed = p.count("seed", 0, u32::MAX)? as u64;
     p.ignore("jitter");
@@ -220,10 +221,13 @@ pub fn build_integrator<'a>(
         "path" => {
             let depth = p.int("max_depth", -1)?;
             if depth != 2 {
-                return Err(el.error(format!(
-                    "path with max_depth {depth} is not supported: lightlab renders direct \
+                return Err(p.error_at(
+                    "max_depth",
+                    format!(
+                        "path with max_depth {depth} is not supported: lightlab renders direct \
                      light only (max_depth 2)"
-                )));
+                    ),
+                ));
             }
             p.ignore("rr_depth");
             MisSettings::default()
@@ -235,7 +239,7 @@ pub fn build_integrator<'a>(
         }
     };
     if p.bool("hide_emitters", false)? {
-        return Err(el.error("hide_emitters is not supported"));
+        return Err(p.error_at("hide_emitters", "hide_emitters is not supported"));
     }
     ctx.finish(&p)?;
     Ok(mis)

@@ -56,7 +56,7 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
     let flip = p.bool("flip_normals", false)?;
     let linear = Mat3::from_mat4(to_world);
     if linear.determinant().abs() < 1e-12 {
-        return Err(el.error("to_world is singular"));
+        return Err(p.error_at("to_world", "to_world is singular"));
     }
     // Normals transform by the inverse transpose (as Mitsuba's Transform does).
     let normal_matrix = linear.inverse().transpose();
@@ -65,7 +65,10 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
             let center = p.vec3("center", Vec3::ZERO)?;
             let radius = p.float("radius", 1.0)?;
             let scale = uniform_scale(linear).ok_or_else(|| {
-                el.error("a sphere's to_world must be a uniform scale, rotation and translation")
+                p.error_at(
+                    "to_world",
+                    "a sphere's to_world must be a uniform scale, rotation and translation",
+                )
             })?;
             if flip {
                 return Err(p.error_at("flip_normals", "flip_normals on a sphere is not supported"));
@@ -118,7 +121,10 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
             if (ey.length() - radius).abs() > TOLERANCE * radius
                 || ex.dot(ey).abs() > TOLERANCE * radius * radius
             {
-                return Err(el.error("a disk's to_world must scale x and y equally (no ellipses)"));
+                return Err(p.error_at(
+                    "to_world",
+                    "a disk's to_world must scale x and y equally (no ellipses)",
+                ));
             }
             let n = (normal_matrix * Vec3::Z).normalize() * if flip { -1.0 } else { 1.0 };
             let disk = Disk {
@@ -146,7 +152,7 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
                     mesh_io::load_serialized(&path, index)
                 }
             }
-            .map_err(|e| el.error(e))?;
+            .map_err(|e| p.error_at("filename", e))?;
             let mut mesh = mesh;
             if p.bool("face_normals", false)? {
                 mesh.normals.clear();
