@@ -314,11 +314,28 @@ pub fn load(kind: Kind, path: &Path) -> Outcome {
             Ok(loaded) => render_tiny(&loaded.scene),
             Err(_) => Outcome::Refused,
         },
-        Kind::Mesh => refused(match extension(path).as_str() {
-            "obj" => mesh_io::load_obj(path).is_ok(),
-            "ply" => mesh_io::load_ply(path).is_ok(),
-            _ => mesh_io::load_serialized(path, 0).is_ok(),
-        }),
+        Kind::Mesh => {
+            let ok = match extension(path).as_str() {
+                "obj" => mesh_io::load_obj(path).is_ok(),
+                "ply" => mesh_io::load_ply(path).is_ok(),
+                _ => mesh_io::load_serialized(path, 0).is_ok(),
+            };
+            // A mesh that loads is also rendered, lit by the sky and glowing itself.
+            let scene = path.with_extension("mesh.xml");
+            let text = format!(
+                "<scene version=\"3.0.0\"><sensor type=\"perspective\"><float name=\"fov\" \
+                 value=\"60\"/></sensor><emitter type=\"constant\"/><shape type=\"{}\">\
+                 <string name=\"filename\" value=\"{}\"/><emitter type=\"area\"/></shape></scene>",
+                extension(path),
+                path.display()
+            );
+            if !ok || std::fs::write(&scene, text).is_err() {
+                return refused(ok);
+            }
+            let outcome = load(Kind::Scene, &scene);
+            let _ = std::fs::remove_file(&scene);
+            outcome
+        }
         Kind::Image if extension(path) == "jpg" => refused(open_image(path).is_ok()),
         Kind::Image => refused(read_image(path).is_ok()),
     }
