@@ -87,7 +87,7 @@ fn main() {
 
     println!(
         "{name}, {width}x{height}, {spp} spp vs a {ref_spp}-spp reference ({})",
-        reference.flags()
+        reference.patch()
     );
     let header: Vec<String> = materials
         .iter()

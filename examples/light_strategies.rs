@@ -25,7 +25,6 @@ fn strategies(emitter: NearPlaneEmitter) -> &'static [LightSampling] {
 
 /// ns per `sample` call at random points of the floor within 2 of the light's centre.
 fn cost_ns(scene: &lightlab::scene::Scene, strategy: LightSampling) -> f64 {
-    let scene = scene.with_light_sampling(strategy);
     let center = scene.lights.iter().fold(Vec3::ZERO, |c, l| match l {
         lightlab::light::Light::Area(a) => {
             let b = a.shape.bounds();
@@ -52,7 +51,7 @@ fn cost_ns(scene: &lightlab::scene::Scene, strategy: LightSampling) -> f64 {
     let start = Instant::now();
     let mut hits = 0u32;
     for (at, index, u) in &points {
-        hits += black_box(scene.lights[*index].sample(at, *u)).is_some() as u32;
+        hits += black_box(scene.lights[*index].sample(at, *u, strategy.into())).is_some() as u32;
     }
     black_box(hits);
     start.elapsed().as_secs_f64() * 1e9 / n as f64

@@ -38,3 +38,36 @@ macro_rules! named_enum {
         }
     };
 }
+
+/// The command-line names of the render flags (without `--`): a contract that users'
+/// scripts rely on. The settings patch, the command line and every report use these.
+pub mod flag {
+    /// `--estimator`.
+    pub const ESTIMATOR: &str = "estimator";
+    /// `--mis`.
+    pub const MIS: &str = "mis";
+    /// `--light-samples`.
+    pub const LIGHT_SAMPLES: &str = "light-samples";
+    /// `--bsdf-samples`.
+    pub const BSDF_SAMPLES: &str = "bsdf-samples";
+    /// `--light-sampling`.
+    pub const LIGHT_SAMPLING: &str = "light-sampling";
+    /// `--envmap-compensation` (a switch).
+    pub const ENVMAP_COMPENSATION: &str = "envmap-compensation";
+    /// `--light-select`.
+    pub const LIGHT_SELECT: &str = "light-select";
+    /// `--ris-candidates`.
+    pub const RIS_CANDIDATES: &str = "ris-candidates";
+    /// `--sampler`.
+    pub const SAMPLER: &str = "sampler";
+    /// `--spp`.
+    pub const SPP: &str = "spp";
+    /// `--seed`.
+    pub const SEED: &str = "seed";
+    /// `--width`.
+    pub const WIDTH: &str = "width";
+    /// `--height`.
+    pub const HEIGHT: &str = "height";
+    /// `--pass`.
+    pub const PASS: &str = "pass";
+}

@@ -6,7 +6,9 @@
 mod common;
 
 use common::chi2::{SEED, check, sidak_alpha};
-use common::lights::{PLACEMENTS, STRATEGIES, TestShape, cap, direction_pdf, light, placement};
+use common::lights::{
+    PLACEMENTS, STRATEGIES, TestLight, TestShape, cap, direction_pdf, light, placement,
+};
 use glam::Vec2;
 use glam::Vec3;
 use lightlab::geometry::Shape;
@@ -90,8 +92,13 @@ fn every_light_strategy_passes_chi_square() {
 /// Their samples are histogrammed instead by the unit normal n_y of the sampled point
 /// (directions within 95° of the axis towards `at`), against the same solid-angle pdf times the
 /// exact Jacobian dω/dn = r²·cos θy/d², which is bounded.
-fn sphere_points(name: &str, light: &Light, at: &ShadingPoint, alpha: f64) -> Result<(), String> {
-    let Light::Area(area) = light else {
+fn sphere_points(
+    name: &str,
+    light: &TestLight,
+    at: &ShadingPoint,
+    alpha: f64,
+) -> Result<(), String> {
+    let Light::Area(area) = &light.light else {
         unreachable!("sphere lights are area lights")
     };
     let Shape::Sphere(sphere) = area.shape else {

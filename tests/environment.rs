@@ -15,9 +15,9 @@ use lightlab::light::Environment;
 use lightlab::light::environment::LatLongImage;
 use lightlab::light::select::LightSelect;
 use lightlab::math::Spectrum;
-use lightlab::render::camera::Camera;
 use lightlab::render::{RenderSettings, render_quiet};
 use lightlab::sampling::{Rng32, SamplerKind};
+use lightlab::scene::Camera;
 use lightlab::scene::{Scene, SceneBuilder, builtin};
 
 fn camera() -> Camera {
@@ -192,7 +192,7 @@ fn environment_maps_load_from_exr_and_hdr() {
         .encode(&pixels, w as usize, h as usize)
         .expect("write hdr");
     for (path, tolerance) in [(exr, 1e-6), (hdr, 1e-2)] {
-        let env = Environment::from_file(&path, 2.0, Mat3::IDENTITY).expect("load");
+        let env = lightlab::scene::environment_from_file(&path, 2.0, Mat3::IDENTITY).expect("load");
         // Texel (3, 1) sits at u = 3.5/8, v = 1/3: direction (sin θ sin φ, cos θ, −sin θ cos φ).
         let (theta, phi) = (
             std::f32::consts::PI / 3.0,
@@ -211,6 +211,7 @@ fn environment_maps_load_from_exr_and_hdr() {
             path.display()
         );
     }
-    let missing = Environment::from_file(&dir.join("missing.exr"), 1.0, Mat3::IDENTITY);
+    let missing =
+        lightlab::scene::environment_from_file(&dir.join("missing.exr"), 1.0, Mat3::IDENTITY);
     assert!(missing.unwrap_err().contains("missing.exr"));
 }

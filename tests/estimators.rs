@@ -9,12 +9,12 @@ use lightlab::image::Film;
 use lightlab::integrator::{Estimator, EstimatorKind, MisHeuristic, MisSettings};
 use lightlab::light::select::LightSelect;
 use lightlab::math::{PI, Spectrum};
-use lightlab::render::{RenderSettings, render_quiet};
-use lightlab::sampling::{Rng32, SamplerKind};
+
+use lightlab::sampling::Rng32;
 use lightlab::scene::builtin;
 
 mod common;
-use common::blocks::{block_z, blocks, worst};
+use common::blocks::{block_z, blocks, render_small, worst};
 use common::lambert::{RECTANGLE_RADIANCE as RADIANCE, floor_under_rectangle, lambert_irradiance};
 
 #[test]
@@ -58,19 +58,10 @@ fn render_assignment(estimator: EstimatorKind, spp: u32, seed: u64) -> Film {
 
 fn render_assignment_mis(estimator: EstimatorKind, mis: MisSettings, spp: u32, seed: u64) -> Film {
     let scene = builtin::build("assignment").expect("scene");
-    let mut s = RenderSettings::for_scene(&scene);
-    s.estimator = estimator;
-    s.mis = mis;
-    s.spp = spp;
-    s.seed = seed;
-    s.sampler = SamplerKind::Independent;
-    s.resolution = Some((48, 32));
-    let film = render_quiet(&scene, &s).film;
-    assert!(
-        film.pixels.iter().all(|p| p.mean.is_finite()),
-        "{estimator}: non-finite pixel"
-    );
-    film
+    render_small(&scene, spp, seed, |s| {
+        s.estimator = estimator;
+        s.mis = mis;
+    })
 }
 
 #[test]

@@ -8,7 +8,8 @@ mod common;
 
 use common::lambert::lambert_irradiance;
 use common::lights::{
-    Placement, RADIANCE, STRATEGIES, TestShape, at, light, outline, placement, solid_angle,
+    Placement, RADIANCE, STRATEGIES, TestLight, TestShape, at, light, outline, placement,
+    solid_angle,
 };
 use glam::Vec3;
 use lightlab::light::{Light, PointLight, ShadingPoint};
@@ -33,7 +34,7 @@ fn points(shape: TestShape) -> Vec<(String, ShadingPoint)> {
 
 /// Mean and standard error of f over the light's samples (a sample with no light scores 0).
 fn estimate(
-    light: &Light,
+    light: &TestLight,
     at: &ShadingPoint,
     seed: u64,
     f: impl Fn(Vec3, f32) -> f64,
@@ -71,7 +72,7 @@ fn exact_irradiance(shape: TestShape, at: &ShadingPoint) -> f64 {
 }
 
 /// Runs `check` on every strategy of every shape from every point; lists all failures.
-fn for_every_case(check: impl Fn(TestShape, &Light, &ShadingPoint, u64) -> Option<String>) {
+fn for_every_case(check: impl Fn(TestShape, &TestLight, &ShadingPoint, u64) -> Option<String>) {
     let mut failures = Vec::new();
     let mut seed = 1;
     for &(shape, strategies) in &STRATEGIES {
@@ -123,7 +124,9 @@ fn point_light_irradiance_is_exact() {
         let d = Vec3::new(0.3, -0.2, 2.0) - p;
         let exact = 5.0 * at.n.dot(d.normalize()) / d.length_squared();
         for _ in 0..100 {
-            let ls = light.sample(&at, rng.next_2d()).expect("above the horizon");
+            let ls = light
+                .sample(&at, rng.next_2d(), Default::default())
+                .expect("above the horizon");
             let e = ls.radiance.x * at.n.dot(ls.w_in) / ls.pdf;
             assert!(
                 ls.delta && (e - exact).abs() <= 1e-5 * exact,
@@ -133,5 +136,9 @@ fn point_light_irradiance_is_exact() {
     }
     // Below the horizon: no light, never NaN.
     let below = at(Vec3::new(0.0, 0.0, 3.0), Vec3::Z);
-    assert!(light.sample(&below, rng.next_2d()).is_none());
+    assert!(
+        light
+            .sample(&below, rng.next_2d(), Default::default())
+            .is_none()
+    );
 }

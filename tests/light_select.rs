@@ -5,7 +5,7 @@
 //! `shirley-100` image within 4 standard errors per pixel block.
 
 mod common;
-use common::blocks::{block_z, blocks, worst};
+use common::blocks::{block_z, blocks, render_small, worst};
 
 use common::chi2::{judge, sidak_alpha};
 use glam::Vec3;
@@ -15,10 +15,10 @@ use lightlab::integrator::EstimatorKind;
 use lightlab::light::select::{LightSelect, LightSelector, Selection, Selector};
 use lightlab::light::{LightSampling, ShadingPoint};
 use lightlab::math::Spectrum;
-use lightlab::render::camera::Camera;
-use lightlab::render::{RenderSettings, render_quiet};
+
+use lightlab::sampling::Rng32;
 use lightlab::sampling::chi2::{Chi2Report, chi2_p_value};
-use lightlab::sampling::{Rng32, SamplerKind};
+use lightlab::scene::Camera;
 use lightlab::scene::builder::Emission;
 use lightlab::scene::{Scene, SceneBuilder, builtin};
 
@@ -281,20 +281,11 @@ fn render_shirley(
     seed: u64,
 ) -> Film {
     let scene = builtin::build("shirley-100").expect("scene");
-    let mut s = RenderSettings::for_scene(&scene);
-    s.estimator = estimator;
-    s.light_select = select;
-    s.light_sampling = sampling;
-    s.spp = spp;
-    s.seed = seed;
-    s.sampler = SamplerKind::Independent;
-    s.resolution = Some((48, 32));
-    let film = render_quiet(&scene, &s).film;
-    assert!(
-        film.pixels.iter().all(|p| p.mean.is_finite()),
-        "{select}: non-finite pixel"
-    );
-    film
+    render_small(&scene, spp, seed, |s| {
+        s.estimator = estimator;
+        s.light_select = select;
+        s.light_sampling = sampling;
+    })
 }
 
 #[test]

@@ -4,7 +4,7 @@
 //! estimator where only light sampling can find the light.
 
 mod common;
-use common::blocks::{block_z, blocks, worst};
+use common::blocks::{block_z, blocks, render_small, worst};
 
 use common::lambert::{RECTANGLE_RADIANCE as RADIANCE, floor_under_rectangle, lambert_irradiance};
 use glam::Vec3;
@@ -13,9 +13,9 @@ use lightlab::geometry::{Ray, SurfaceHit};
 use lightlab::integrator::{Estimator, EstimatorKind, MisHeuristic, MisSettings};
 use lightlab::light::select::LightSelect;
 use lightlab::math::{PI, Spectrum};
-use lightlab::render::camera::Camera;
 use lightlab::render::{RenderSettings, render_quiet};
 use lightlab::sampling::{Rng32, SamplerKind};
+use lightlab::scene::Camera;
 use lightlab::scene::builder::Emission;
 use lightlab::scene::{Scene, SceneBuilder};
 
@@ -84,16 +84,27 @@ fn mis_matches_lambert_for_every_heuristic_and_sample_count() {
                     0.0,
                 )
             };
-            for (i, mis) in every_mis().into_iter().enumerate() {
-                let est =
-                    Estimator::new(&scene, EstimatorKind::Mis, LightSelect::Uniform).with_mis(mis);
-                let (mean, se) = estimate(&scene, &est, &hit, 100_000, 7 + i as u64);
+            // Every MIS variant, with plain light sampling and with light samples resampled
+            // from 4 candidates (RIS); and the light estimator resampling 1, 4 or 16.
+            let mut estimators: Vec<(String, Estimator)> = Vec::new();
+            for mis in every_mis() {
+                for select in [LightSelect::Uniform, LightSelect::Ris] {
+                    let est = Estimator::new(&scene, EstimatorKind::Mis, select)
+                        .with_mis(mis)
+                        .with_ris_candidates(4);
+                    estimators.push((format!("{select} {mis:?}"), est));
+                }
+            }
+            for m in [1, 4, 16] {
+                let est = Estimator::new(&scene, EstimatorKind::Light, LightSelect::Ris)
+                    .with_ris_candidates(m);
+                estimators.push((format!("light ris M={m}"), est));
+            }
+            for (i, (name, est)) in estimators.iter().enumerate() {
+                let (mean, se) = estimate(&scene, est, &hit, 100_000, 7 + i as u64);
                 let z = (mean - exact) / (se * se + exact_se * exact_se).sqrt().max(1e-12);
-                println!(
-                    "glossy {glossy} {} N={} M={} at {x}: {mean:.5} vs {exact:.5} (z = {z:+.2})",
-                    mis.heuristic, mis.light_samples, mis.bsdf_samples
-                );
-                assert!(z.abs() < 4.0, "{mis:?} at {x}: {mean} vs {exact}, z = {z}");
+                println!("glossy {glossy} {name} at {x}: {mean:.5} vs {exact:.5} (z = {z:+.2})");
+                assert!(z.abs() < 4.0, "{name} at {x}: {mean} vs {exact}, z = {z}");
             }
         }
     }
@@ -194,16 +205,10 @@ fn mis_equals_light_sampling_when_only_light_sampling_can_find_the_light() {
 fn veach_mis_estimators_agree() {
     let scene = lightlab::scene::builtin::build("veach-mis").expect("scene");
     let render = |estimator: EstimatorKind, mis: MisSettings, spp: u32, seed: u64| {
-        let mut s = RenderSettings::for_scene(&scene);
-        s.estimator = estimator;
-        s.mis = mis;
-        s.spp = spp;
-        s.seed = seed;
-        s.sampler = SamplerKind::Independent;
-        s.resolution = Some((48, 32));
-        let film = render_quiet(&scene, &s).film;
-        assert!(film.pixels.iter().all(|p| p.mean.is_finite()));
-        blocks(&film)
+        blocks(&render_small(&scene, spp, seed, |s| {
+            s.estimator = estimator;
+            s.mis = mis;
+        }))
     };
     let reference = render(EstimatorKind::Mis, MisSettings::default(), 8192, 1);
     let mut runs = vec![("bsdf", EstimatorKind::Bsdf, MisSettings::default(), 4096)];

@@ -38,7 +38,7 @@ fn errors_name_line_column_and_element() {
         ),
         (
             scene(r#"<shape type="obj"><string name="filename" value="missing.obj"/></shape>"#),
-            (4, 1),
+            (4, 19),
             &["missing.obj"],
         ),
         (
@@ -63,7 +63,7 @@ fn errors_name_line_column_and_element() {
         ),
         (
             scene(r#"<integrator type="path"><integer name="max_depth" value="5"/></integrator>"#),
-            (4, 1),
+            (4, 25),
             &["max_depth 5"],
         ),
         (

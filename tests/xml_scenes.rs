@@ -10,6 +10,10 @@
 //! image mean must be within 1% of the reference's. The reference's own noise enters the
 //! standard error through the variance channels `make_refs.py` stores (from 8 passes).
 
+mod common;
+use common::blocks::{block_means, block_variances};
+use common::chi2::sidak;
+
 use std::path::PathBuf;
 
 use lightlab::image::io::read_image;
@@ -28,111 +32,64 @@ const BLOCK: u32 = 8;
 /// Family-wise level per scene.
 const ALPHA: f64 = 0.01;
 
-/// (scene, plugins it covers, reason to skip until a feature lands).
-const CASES: &[(&str, &str, Option<&str>)] = &[
+/// (scene, plugins it covers).
+const CASES: &[(&str, &str)] = &[
     (
         "cbox_diffuse",
         "direct, rectangle, sphere, area, diffuse, id/ref, box, independent, $spp",
-        None,
     ),
     (
         "gaussian_stratified",
         "hdrfilm default gaussian, stratified + seed, shading_samples, near_clip, sphere center/radius/to_world, scale x/y/z, spectrum, default bsdf",
-        None,
     ),
     (
         "tent_point",
         "tent, multijitter, point (position, to_world), cube, fov_axis y, rotate",
-        None,
     ),
     (
         "disk_twosided",
         "disk, twosided, named ref, flip_normals (rectangle, disk emitter), emitter_samples 2",
-        None,
     ),
     (
         "mesh_obj",
         "obj (quads, smoothed normals), face_normals, path max_depth 2",
-        None,
     ),
     (
         "mesh_ply_serialized",
         "ply binary (normals, uv), serialized (shape_index 0/1), emitting mesh",
-        None,
     ),
     (
         "path_include",
         "include, default + $name, float reflectance, matrix 4x4 and 3x3, gaussian stddev, ldsampler, fov_axis diagonal",
-        None,
     ),
     (
         "legacy_v06",
         "version 0.6 upgrade (toWorld, sampleCount, fovAxis, nearClip, emitterSamples, bsdfSamples), scale x=-1 camera, bsdf_samples 2",
-        None,
     ),
     (
         "textures_bitmap",
         "bitmap PNG (sRGB, nearest, to_uv) by ref, JPEG (bilinear, clamp) in twosided on an OBJ with uv (flip_tex_coords), EXR (mirror)",
-        None,
     ),
     (
         "envmap_rotated",
         "envmap (EXR, scale, to_world rotation), disk",
-        None,
     ),
     (
         "constant_env",
         "constant (uniform spectrum = illuminant E), bsdf_samples 3, gaussian on 48x48, stratified",
-        None,
     ),
     (
         "microfacet_conductor",
         "roughconductor (ggx + Au, beckmann + Al + specular_reflectance), conductor (Cu)",
-        None,
     ),
     (
         "microfacet_plastic",
         "roughplastic (alpha, int_ior), plastic",
-        None,
     ),
 ];
 
 fn dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/scenes")
-}
-
-/// Per-block variance of the mean of a reference from its per-pixel variances: channels
-/// taken as fully correlated (an upper bound), pixels as independent (exact for the box
-/// filter).
-fn block_variances(variance: &[Spectrum], w: u32, h: u32) -> Vec<f64> {
-    let per_pixel: Vec<Spectrum> = variance
-        .iter()
-        .map(|v| {
-            let sd = v.max(Spectrum::ZERO).to_array().map(f32::sqrt);
-            // Var((R + G + B)/3) with fully correlated channels.
-            Spectrum::splat(((sd[0] + sd[1] + sd[2]) / 3.0).powi(2))
-        })
-        .collect();
-    // The block mean of n independent pixels: Var = Σ var / n² = (mean var) / n.
-    let n = (BLOCK * BLOCK) as f64;
-    block_means(&per_pixel, w, h)
-        .into_iter()
-        .map(|v| v / n)
-        .collect()
-}
-
-/// Per-block means of one image.
-fn block_means(rgb: &[Spectrum], w: u32, h: u32) -> Vec<f64> {
-    let (bw, bh) = (w.div_ceil(BLOCK), h.div_ceil(BLOCK));
-    let mut sums = vec![(0.0f64, 0u32); (bw * bh) as usize];
-    for y in 0..h {
-        for x in 0..w {
-            let b = ((y / BLOCK) * bw + x / BLOCK) as usize;
-            sums[b].0 += rgb[(y * w + x) as usize].element_sum() as f64 / 3.0;
-            sums[b].1 += 1;
-        }
-    }
-    sums.iter().map(|(s, n)| s / *n as f64).collect()
 }
 
 /// Renders `name` in passes and checks it; returns a table row or the failure.
@@ -159,15 +116,15 @@ fn check(name: &str) -> Result<String, String> {
         for (t, m) in total.iter_mut().zip(&means) {
             *t += *m / PASSES as f32;
         }
-        passes.push(block_means(&means, w, h));
+        passes.push(block_means(&means, w, h, BLOCK));
     }
-    let refs = block_means(&reference.rgb, w, h);
+    let refs = block_means(&reference.rgb, w, h, BLOCK);
     let ref_vars = match &reference.variance {
-        Some(v) => block_variances(v, w, h),
+        Some(v) => block_variances(v, w, h, BLOCK),
         None => vec![0.0; refs.len()],
     };
     let blocks = refs.len();
-    let alpha = 1.0 - (1.0 - ALPHA).powf(1.0 / blocks as f64);
+    let alpha = sidak(ALPHA, blocks);
     let t = StudentsT::new(0.0, 1.0, (PASSES - 1) as f64).map_err(|e| e.to_string())?;
     let n = PASSES as f64;
     let mut worst = (1.0f64, 0usize);
@@ -216,11 +173,7 @@ fn check(name: &str) -> Result<String, String> {
 #[test]
 fn scenes_match_mitsuba_references() {
     let mut failures = Vec::new();
-    for &(name, plugins, skip) in CASES {
-        if let Some(reason) = skip {
-            println!("{name:<22} SKIPPED: {reason}");
-            continue;
-        }
+    for &(name, plugins) in CASES {
         match check(name) {
             Ok(row) => println!("{row}  [{plugins}]"),
             Err(e) => {

@@ -1,133 +1,109 @@
-//! Flags shared by every subcommand that renders: the strategies, sampler and budget.
+//! The render flags on the command line: clap reads them straight into a settings
+//! [`RenderPatch`], from the patch's own table of flags (`RenderPatch::VALUE_FLAGS`), so
+//! no second list of flags is kept here.
 
-use clap::Args;
+use clap::error::ErrorKind;
+use clap::{Arg, ArgAction, ArgMatches, Args, Command, FromArgMatches};
 
 use super::CliError;
-use crate::integrator::{EstimatorKind, MisHeuristic};
-use crate::light::LightSampling;
-use crate::light::select::LightSelect;
-use crate::render::{Pass, RenderSettings};
-use crate::sampling::SamplerKind;
+use crate::names::flag;
+use crate::render::RenderSettings;
 use crate::scene::Scene;
+use crate::settings::RenderPatch;
 
-/// Strategy, sampler and budget flags.
-#[derive(Args, Debug, Clone, Default)]
-pub struct StrategyArgs {
-    /// Direct-lighting estimator: hemisphere, hemisphere-rejection, cosine, bsdf, light, mis.
-    #[arg(long)]
-    pub estimator: Option<EstimatorKind>,
-    /// MIS weighting: balance, power (β = 2), one-sample (balance, one strategy per sample).
-    #[arg(long)]
-    pub mis: Option<MisHeuristic>,
-    /// Light samples per estimate of the `mis` estimator.
-    #[arg(long)]
-    pub light_samples: Option<u32>,
-    /// BSDF samples per estimate of the `mis` estimator.
-    #[arg(long)]
-    pub bsdf_samples: Option<u32>,
-    /// Area-light sampling strategy: area, visible-area, solid-angle, geometric, best (default;
-    /// per shape). A shape without the chosen strategy uses area.
-    #[arg(long)]
-    pub light_sampling: Option<LightSampling>,
-    /// MIS compensation of environment-map sampling (Karlík et al. 2019): sample
-    /// ∝ max(0, L − mean L). Unbiased only with `--estimator mis`, so required with it.
-    #[arg(long)]
-    pub envmap_compensation: bool,
-    /// Light selection among many lights: uniform, power, adaptive, bvh (default).
-    #[arg(long)]
-    pub light_select: Option<LightSelect>,
-    /// Sampler: independent, stratified, sobol.
-    #[arg(long)]
-    pub sampler: Option<SamplerKind>,
-    /// Samples per pixel (default: the scene's).
-    #[arg(long)]
-    pub spp: Option<u32>,
-    /// Seed of every random stream.
-    #[arg(long)]
-    pub seed: Option<u64>,
-    /// Image width (overrides the scene's; height follows the aspect unless given).
-    #[arg(long)]
-    pub width: Option<u32>,
-    /// Image height.
-    #[arg(long)]
-    pub height: Option<u32>,
-    /// Render only pass I of N (sample indices split evenly): `--pass 2/8`.
-    #[arg(long)]
-    pub pass: Option<Pass>,
+/// Every render flag (strategies, sampler, budget, image size, pass).
+#[derive(Debug, Clone, Default)]
+pub struct StrategyArgs(pub RenderPatch);
+
+/// The render flags a lab experiment applies to all of its strategies.
+#[derive(Debug, Clone, Default)]
+pub struct LabPatchArgs(pub RenderPatch);
+
+/// The flags of [`LabPatchArgs`].
+const LAB_FLAGS: [&str; 4] = [flag::WIDTH, flag::HEIGHT, flag::SEED, flag::SAMPLER];
+
+/// Adds the value flags `names` (and the compensation switch if `switch`) to `cmd`.
+fn augment(cmd: Command, names: &[&'static str], switch: bool) -> Command {
+    let mut cmd = cmd;
+    for (name, help) in RenderPatch::VALUE_FLAGS {
+        if names.contains(name) {
+            cmd = cmd.arg(
+                Arg::new(*name)
+                    .long(*name)
+                    .help(*help)
+                    .value_name(name.to_uppercase().replace('-', "_"))
+                    .action(ArgAction::Set)
+                    // `--spp -1` is a bad value of --spp, not an unknown flag `-1`.
+                    .allow_hyphen_values(true),
+            );
+        }
+    }
+    if switch {
+        cmd = cmd.arg(
+            Arg::new(flag::ENVMAP_COMPENSATION)
+                .long(flag::ENVMAP_COMPENSATION)
+                .help(
+                    "MIS compensation of environment-map sampling (Karlík et al. 2019): sample \
+                     ∝ max(0, L − mean L). Unbiased only with --estimator mis, so required with it.",
+                )
+                .action(ArgAction::SetTrue),
+        );
+    }
+    cmd
 }
 
+/// Reads the flags `names` (and the switch if `switch`) into a patch.
+fn read(m: &ArgMatches, names: &[&str], switch: bool) -> Result<RenderPatch, clap::Error> {
+    let mut patch = RenderPatch::default();
+    for name in names {
+        if let Some(value) = m.get_one::<String>(name) {
+            patch
+                .set(name, value)
+                .map_err(|e| clap::Error::raw(ErrorKind::ValueValidation, format!("{e}\n")))?;
+        }
+    }
+    if switch && m.get_flag(flag::ENVMAP_COMPENSATION) {
+        patch.envmap_compensation = Some(true);
+    }
+    Ok(patch)
+}
+
+/// Implements clap's `Args` for a newtype over [`RenderPatch`] with the flags `$names`.
+macro_rules! patch_args {
+    ($ty:ident, $names:expr, $switch:expr) => {
+        impl Args for $ty {
+            fn augment_args(cmd: Command) -> Command {
+                augment(cmd, &$names, $switch)
+            }
+            fn augment_args_for_update(cmd: Command) -> Command {
+                augment(cmd, &$names, $switch)
+            }
+        }
+
+        impl FromArgMatches for $ty {
+            fn from_arg_matches(m: &ArgMatches) -> Result<Self, clap::Error> {
+                read(m, &$names, $switch).map($ty)
+            }
+            fn update_from_arg_matches(&mut self, m: &ArgMatches) -> Result<(), clap::Error> {
+                self.0 = self.0.then(&read(m, &$names, $switch)?);
+                Ok(())
+            }
+        }
+    };
+}
+
+/// Every value flag's name.
+fn all_flags() -> Vec<&'static str> {
+    RenderPatch::VALUE_FLAGS.iter().map(|(f, _)| *f).collect()
+}
+
+patch_args!(StrategyArgs, all_flags(), true);
+patch_args!(LabPatchArgs, LAB_FLAGS, false);
+
 impl StrategyArgs {
-    /// The settings for `scene` with these flags applied over its defaults.
+    /// The settings for `scene` with these flags laid over its defaults.
     pub fn settings(&self, scene: &Scene) -> Result<RenderSettings, CliError> {
-        let mut s = RenderSettings::for_scene(scene);
-        if let Some(v) = self.estimator {
-            s.estimator = v;
-        }
-        if let Some(v) = self.mis {
-            s.mis.heuristic = v;
-        }
-        for (flag, given, count) in [
-            (
-                "--light-samples",
-                self.light_samples,
-                &mut s.mis.light_samples,
-            ),
-            ("--bsdf-samples", self.bsdf_samples, &mut s.mis.bsdf_samples),
-        ] {
-            if let Some(v) = given {
-                if !(1..=1024).contains(&v) {
-                    return Err(CliError::input(format!(
-                        "{flag} must be in 1..=1024, not {v}"
-                    )));
-                }
-                *count = v;
-            }
-        }
-        if self.envmap_compensation {
-            if s.estimator != EstimatorKind::Mis {
-                return Err(CliError::input(format!(
-                    "--envmap-compensation is unbiased only with --estimator mis, not {}",
-                    s.estimator
-                )));
-            }
-            s.envmap_compensation = true;
-        }
-        if let Some(v) = self.light_sampling {
-            s.light_sampling = v;
-        }
-        if let Some(v) = self.light_select {
-            s.light_select = v;
-        }
-        if let Some(v) = self.sampler {
-            s.sampler = v;
-        }
-        if let Some(v) = self.spp {
-            if v == 0 {
-                return Err(CliError::input("--spp must be at least 1"));
-            }
-            s.spp = v;
-        }
-        if let Some(v) = self.seed {
-            s.seed = v;
-        }
-        if let Some(v) = self.pass {
-            s.pass = v;
-        }
-        let (cw, ch) = (scene.camera.width, scene.camera.height);
-        s.resolution = match (self.width, self.height) {
-            (None, None) => None,
-            (Some(w), None) => Some((w, ((w as u64 * ch as u64) / cw as u64).max(1) as u32)),
-            (None, Some(h)) => Some((((h as u64 * cw as u64) / ch as u64).max(1) as u32, h)),
-            (Some(w), Some(h)) => Some((w, h)),
-        };
-        if let Some((w, h)) = s.resolution
-            && (w == 0 || h == 0 || w > 32768 || h > 32768)
-        {
-            return Err(CliError::input(format!(
-                "image size {w}x{h} is out of range (1..=32768)"
-            )));
-        }
-        Ok(s)
+        RenderSettings::build(scene, &[&self.0]).map_err(CliError::input)
     }
 }
 
@@ -136,5 +112,45 @@ pub fn parse_define(s: &str) -> Result<(String, String), String> {
     match s.split_once('=') {
         Some((n, v)) if !n.trim().is_empty() => Ok((n.trim().to_owned(), v.to_owned())),
         _ => Err(format!("expected NAME=VALUE, not \"{s}\"")),
+    }
+}
+
+/// A pool of `threads` workers (all cores when `None` or 0).
+pub fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, CliError> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
+        .build()
+        .map_err(CliError::failure)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Parser)]
+    #[command(no_binary_name = true)]
+    struct Both {
+        #[command(flatten)]
+        all: StrategyArgs,
+    }
+
+    #[test]
+    fn the_command_line_and_the_patch_parser_agree() {
+        for text in [
+            "--estimator light --light-sampling area --spp 16",
+            "--mis balance --light-samples 2 --bsdf-samples 3 --envmap-compensation",
+            "--sampler stratified --seed 9 --width 64 --height 32 --pass 2/8 --light-select power",
+        ] {
+            let words: Vec<&str> = text.split_whitespace().collect();
+            let cli = Both::try_parse_from(&words).unwrap().all.0;
+            assert_eq!(cli, text.parse::<RenderPatch>().unwrap(), "{text}");
+            assert_eq!(cli.to_string().parse::<RenderPatch>().unwrap(), cli);
+        }
+        let e = Both::try_parse_from(["--spp", "-1"])
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(e.contains("--spp -1"), "{e}");
     }
 }

@@ -61,10 +61,7 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
             )));
         }
     }
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(args.threads.unwrap_or(0))
-        .build()
-        .map_err(CliError::failure)?;
+    let pool = super::args::thread_pool(args.threads)?;
     let scenes = args
         .scenes
         .iter()

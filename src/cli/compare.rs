@@ -67,7 +67,7 @@ pub fn reference_source(file: &Option<PathBuf>, spp: u32) -> Result<ReferenceSou
     Ok(match file {
         Some(p) => ReferenceSource::File(p.clone()),
         None => ReferenceSource::Render {
-            strategy: Strategy::new("default", ""),
+            strategy: Strategy::new("default", Default::default()),
             spp,
         },
     })
@@ -81,7 +81,7 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
         reference: reference_source(&args.reference, args.reference_spp)?,
         strategies,
         budget: budget(args.spp, args.time)?,
-        base_flags: args.render.base_flags(),
+        base: args.render.base(),
         insets: args.inset.clone(),
         title: None,
         notes: vec![],

@@ -51,7 +51,7 @@ pub fn run(args: &ConvergeArgs) -> Result<(), CliError> {
         strategies,
         max_spp: args.max_spp,
         seeds: args.seeds,
-        base_flags: args.render.base_flags(),
+        base: args.render.base(),
         title: None,
     };
     install_stop_handler();

@@ -36,7 +36,7 @@ pub struct FigureArgs {
 /// Runs `figure`.
 pub fn run(args: &FigureArgs) -> Result<(), CliError> {
     let options = FigureOptions {
-        base_flags: args.render.base_flags(),
+        base: args.render.base(),
         spp: args.spp,
         reference_spp: args.reference_spp,
         converge: args.converge,

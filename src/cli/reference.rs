@@ -42,7 +42,7 @@ pub struct ReferenceArgs {
 
 /// Runs `reference`.
 pub fn run(args: &ReferenceArgs) -> Result<(), CliError> {
-    if args.strategy.pass.is_some() {
+    if args.strategy.0.pass.is_some() {
         return Err(CliError::input(
             "reference renders whole images; --pass does not apply",
         ));
@@ -58,7 +58,7 @@ pub fn run(args: &ReferenceArgs) -> Result<(), CliError> {
     }
     let target = ReferenceTarget {
         rel_error: args.rel_error,
-        max_spp: args.strategy.spp,
+        max_spp: args.strategy.0.spp,
         max_time: match args.time {
             Some(t) if t.is_finite() && t > 0.0 => Some(Duration::from_secs_f64(t)),
             Some(t) => return Err(CliError::input(format!("--time must be positive, not {t}"))),
@@ -90,10 +90,7 @@ pub fn run(args: &ReferenceArgs) -> Result<(), CliError> {
             e.mean_rel_error, e.pixel_rel_error
         ))
     };
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(args.threads.unwrap_or(0))
-        .build()
-        .map_err(CliError::failure)?;
+    let pool = super::args::thread_pool(args.threads)?;
     let r = pool.install(|| render_reference(&scene, &settings, &target, &STOP, &progress));
     bar.finish_and_clear();
     let out = &r.output;
@@ -105,7 +102,7 @@ pub fn run(args: &ReferenceArgs) -> Result<(), CliError> {
         ("lightlab.version", VERSION.to_string()),
         ("lightlab.command", command_line()),
         ("lightlab.scene", scene.name.clone()),
-        ("lightlab.settings", final_settings.flags()),
+        ("lightlab.settings", final_settings.patch().to_string()),
         ("lightlab.time_s", format!("{:.3}", out.time.as_secs_f64())),
         ("lightlab.passes", r.passes.to_string()),
         (

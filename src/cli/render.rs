@@ -62,10 +62,7 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
     let spec = args.scene.as_deref().unwrap_or(DEFAULT_SCENE);
     let scene = scene::load_with(spec, &args.define).map_err(CliError::input)?;
     let settings = args.strategy.settings(&scene)?;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(args.threads.unwrap_or(0))
-        .build()
-        .map_err(CliError::failure)?;
+    let pool = super::args::thread_pool(args.threads)?;
     install_stop_handler();
     let camera = settings.camera(&scene);
     let (first, last) = settings.pass.sample_range(settings.spp);
@@ -97,7 +94,7 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
         },
         out.time.as_secs_f64(),
         samples / out.time.as_secs_f64().max(1e-9) / 1e6,
-        settings.flags(),
+        settings.patch(),
         args.output.display()
     );
     if out.invalid_samples > 0 {

@@ -2,28 +2,27 @@
 //! f · G · V · Le / p_A — computed here as f · cos θ_x · Le / p_ω with the density
 //! converted to solid angle, which is the same quantity.
 
-use glam::Vec3;
-
-use super::f_cos;
-use crate::bsdf::Material;
-use crate::geometry::SurfaceHit;
-use crate::light::ShadingPoint;
-use crate::light::select::{LightSelector, Selector};
+use super::{Context, f_cos};
+use crate::light::select::LightSelector;
 use crate::math::Spectrum;
 use crate::sampling::Uniform;
-use crate::scene::Scene;
 
 /// One sample of the light estimator. The selection number is reused for nothing else
 /// here; the point on the light takes its own two numbers.
-pub(super) fn estimate(
-    scene: &Scene,
-    selector: &Selector,
-    at: &ShadingPoint,
-    hit: &SurfaceHit,
-    material: &Material,
-    w_out: Vec3,
-    src: &mut impl Uniform,
-) -> Spectrum {
+pub(super) fn estimate(ctx: &Context<'_>, src: &mut impl Uniform) -> Spectrum {
+    let Context {
+        scene,
+        selector,
+        lights,
+        at,
+        hit,
+        material,
+        w_out,
+        ..
+    } = *ctx;
+    if let Some(m) = ctx.ris {
+        return super::ris::estimate(ctx, src, m);
+    }
     let u_select = src.next_1d();
     let u_point = src.next_2d();
     let Some(sel) = selector.select(at, u_select) else {
@@ -31,7 +30,7 @@ pub(super) fn estimate(
     };
     let light = &scene.lights[sel.index];
     // Horizon rejection happens inside `sample`, before any shadow ray.
-    let Some(ls) = light.sample(at, u_point) else {
+    let Some(ls) = light.sample(at, u_point, lights) else {
         return Spectrum::ZERO;
     };
     let w_in = hit.frame.to_local(ls.w_in);
@@ -40,16 +39,7 @@ pub(super) fn estimate(
         return Spectrum::ZERO;
     }
     // Point lights and lights at infinity have no surface point to aim a segment at.
-    let occluded = if ls.delta || ls.distance.is_infinite() {
-        scene
-            .geometry
-            .direction_occluded(hit.p, hit.ng, ls.w_in, ls.distance)
-    } else {
-        scene
-            .geometry
-            .segment_occluded(hit.p, hit.ng, ls.point, ls.normal)
-    };
-    if occluded {
+    if ctx.occluded(&ls) {
         return Spectrum::ZERO;
     }
     f * ls.radiance / (ls.pdf * sel.pmf)

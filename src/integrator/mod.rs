@@ -7,36 +7,23 @@
 mod directional;
 mod light;
 pub mod mis;
+mod ris;
+
+pub use crate::settings::{DEFAULT_RIS_CANDIDATES, MAX_RIS_CANDIDATES};
 
 pub use mis::{MisHeuristic, MisSettings};
 
 use glam::Vec3;
 
-use crate::bsdf::Bsdf;
+use crate::bsdf::{Bsdf, Material};
 use crate::geometry::{NO_LIGHT, Ray, SurfaceHit};
-use crate::light::ShadingPoint;
 use crate::light::select::{LightSelect, Selector};
+use crate::light::{LightSample, LightStrategy, ShadingPoint};
 use crate::math::{Frame, Spectrum};
 use crate::sampling::Uniform;
 use crate::scene::Scene;
 
-named_enum! {
-    /// The direct-lighting strategy, by CLI name.
-    pub enum EstimatorKind: "estimator" {
-        /// Uniform directions by (z, φ), weight 2π.
-        Hemisphere => "hemisphere",
-        /// Uniform directions by rejection from the cube [-1, 1]³.
-        HemisphereRejection => "hemisphere-rejection",
-        /// Cosine-weighted directions (Malley's method).
-        Cosine => "cosine",
-        /// The BSDF's own `sample`.
-        Bsdf => "bsdf",
-        /// A point on a light (area form), one shadow ray.
-        Light => "light",
-        /// Light and BSDF sampling combined by multiple importance sampling.
-        Mis => "mis",
-    }
-}
+pub use crate::settings::EstimatorKind;
 
 /// A direct-lighting estimator bound to a scene: the strategy and the light selector.
 #[derive(Clone, Debug)]
@@ -47,16 +34,37 @@ pub struct Estimator {
     pub selector: Selector,
     /// Sample counts and weighting of the MIS estimator.
     pub mis: MisSettings,
+    /// How every light is sampled (per-shape strategy, environment compensation).
+    pub lights: LightStrategy,
+    /// Candidates per light sample under resampled importance sampling (light selection
+    /// `ris`); `None` for the other selectors.
+    pub ris: Option<u32>,
 }
 
 impl Estimator {
-    /// The estimator `kind` for `scene`, choosing lights with `select`.
+    /// The estimator `kind` for `scene`, choosing lights with `select` (`ris` resamples
+    /// [`DEFAULT_RIS_CANDIDATES`] candidates; see [`Estimator::with_ris_candidates`]).
     pub fn new(scene: &Scene, kind: EstimatorKind, select: LightSelect) -> Estimator {
         Estimator {
             kind,
             selector: Selector::new(select, &scene.lights),
             mis: MisSettings::default(),
+            lights: LightStrategy::default(),
+            ris: (select == LightSelect::Ris).then_some(DEFAULT_RIS_CANDIDATES),
         }
+    }
+
+    /// The same estimator resampling light samples from `m` candidates when its light
+    /// selection is `ris` (no effect otherwise).
+    pub fn with_ris_candidates(mut self, m: u32) -> Estimator {
+        self.ris = self.ris.map(|_| m);
+        self
+    }
+
+    /// The same estimator sampling lights with `lights`.
+    pub fn with_light_strategy(mut self, lights: LightStrategy) -> Estimator {
+        self.lights = lights;
+        self
     }
 
     /// The same estimator with the MIS settings `mis`.
@@ -110,22 +118,49 @@ impl Estimator {
             ng: hit.ng,
             n: hit.frame.n,
         };
+        let ctx = Context {
+            scene,
+            selector: &self.selector,
+            lights: self.lights,
+            at: &at,
+            hit,
+            material,
+            w_out: w_out_local,
+            ris: self.ris,
+        };
         match self.kind {
-            EstimatorKind::Light => {
-                light::estimate(scene, &self.selector, &at, hit, material, w_out_local, src)
-            }
-            EstimatorKind::Mis => {
-                let ctx = mis::Context {
-                    scene,
-                    selector: &self.selector,
-                    at: &at,
-                    hit,
-                    material,
-                    w_out: w_out_local,
-                };
-                mis::estimate(&ctx, self.mis, src)
-            }
+            EstimatorKind::Light => light::estimate(&ctx, src),
+            EstimatorKind::Mis => mis::estimate(&ctx, self.mis, src),
             kind => directional::estimate(scene, kind, hit, material, w_out_local, src),
+        }
+    }
+}
+
+/// The scene and shading context every sample of one estimate shares.
+#[derive(Clone, Copy)]
+struct Context<'a> {
+    scene: &'a Scene,
+    selector: &'a Selector,
+    /// How lights are sampled.
+    lights: LightStrategy,
+    at: &'a ShadingPoint,
+    hit: &'a SurfaceHit,
+    material: &'a Material,
+    /// w_out in the local shading frame.
+    w_out: Vec3,
+    /// Light samples are resampled from this many candidates (RIS), if set.
+    ris: Option<u32>,
+}
+
+impl Context<'_> {
+    /// Whether the shadow ray from the shading point to the light sample `ls` is blocked
+    /// (point lights and lights at infinity have no surface point to aim a segment at).
+    fn occluded(&self, ls: &LightSample) -> bool {
+        let geometry = &self.scene.geometry;
+        if ls.delta || ls.distance.is_infinite() {
+            geometry.direction_occluded(self.hit.p, self.hit.ng, ls.w_in, ls.distance)
+        } else {
+            geometry.segment_occluded(self.hit.p, self.hit.ng, ls.point, ls.normal)
         }
     }
 }

@@ -123,17 +123,7 @@ fn rounds(
             ..settings.clone()
         };
         let out = render(scene, &s, control);
-        let merged = match total.take() {
-            None => out,
-            Some(t) if out.spp == 0 => t,
-            Some(t) => RenderOutput {
-                film: t.film.merge(&out.film).unwrap_or(t.film),
-                time: Duration::ZERO,
-                spp: t.spp + out.spp,
-                invalid_samples: t.invalid_samples + out.invalid_samples,
-                stopped: out.stopped,
-            },
-        };
+        let merged = RenderOutput::merge(total.take(), out);
         let elapsed = start.elapsed().as_secs_f64();
         let per_spp = elapsed / merged.spp.max(1) as f64;
         let left = limit.as_secs_f64() - elapsed;

@@ -25,6 +25,7 @@ use crate::lab::report::{
     Gallery, Report, Table, ViewerImage, command_line, write_report, write_text, write_viewer_image,
 };
 use crate::lab::strategy::Strategy;
+use crate::settings::RenderPatch;
 
 /// What to compare.
 #[derive(Clone, Debug)]
@@ -36,7 +37,7 @@ pub struct CompareConfig {
     /// Equal spp or equal time.
     pub budget: Budget,
     /// Render flags applied to every strategy (`--width 64 --seed 3`).
-    pub base_flags: Vec<String>,
+    pub base: RenderPatch,
     /// The reference.
     pub reference: ReferenceSource,
     /// Inset rectangles; empty picks two high-error regions.
@@ -87,17 +88,17 @@ pub fn run_compare(
 ) -> Result<Vec<StrategyResult>, LabError> {
     let scene = load_scene(&config.scene)?;
     let extra = match config.budget {
-        Budget::Spp(n) => vec!["--spp".to_string(), n.to_string()],
-        Budget::Time(_) => vec![],
+        Budget::Spp(n) => RenderPatch::spp(n),
+        Budget::Time(_) => RenderPatch::default(),
     };
-    let settings = resolve(&scene, &config.strategies, &config.base_flags, &extra)?;
+    let settings = resolve(&scene, &config.strategies, &config.base, &extra)?;
     let camera = settings[0].camera(&scene);
     let size = (camera.width, camera.height);
     log(&format!(
         "reference for {} ({}x{})",
         config.scene, size.0, size.1
     ));
-    let reference = obtain_reference(&scene, &config.reference, &config.base_flags, size, stop)?;
+    let reference = obtain_reference(&scene, &config.reference, &config.base, size, stop)?;
     let mut results = Vec::new();
     let mut films = Vec::new();
     for (strategy, s) in config.strategies.iter().zip(&settings) {
@@ -129,7 +130,8 @@ pub fn run_compare(
                 spp: out.spp,
                 ..s.clone()
             }
-            .flags(),
+            .patch()
+            .to_string(),
             spp: out.spp,
             time: out.time,
             error,
@@ -202,7 +204,7 @@ fn write_outputs(
         .title
         .clone()
         .unwrap_or_else(|| format!("{} at {}", config.scene, config.budget.describe()));
-    let seeds = seeds_of(&config.base_flags);
+    let seeds = vec![config.base.seed.unwrap_or(0)];
     let mut notes = config.notes.clone();
     notes.push(format!(
         "scene: {}, {}x{}, {}",
@@ -278,17 +280,6 @@ fn write_outputs(
     let text = serde_json::to_string_pretty(&json).map_err(|e| LabError::Input(e.to_string()))?;
     write_text(&dir.join("results.json"), &text)?;
     Ok(())
-}
-
-/// The seed flags among `flags` (default 0).
-pub fn seeds_of(flags: &[String]) -> Vec<u64> {
-    let seed = flags
-        .iter()
-        .position(|f| f == "--seed")
-        .and_then(|i| flags.get(i + 1))
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(0);
-    vec![seed]
 }
 
 /// A relative efficiency: three decimals, or two significant digits when tiny.

@@ -19,6 +19,7 @@ use crate::lab::strategy::Strategy;
 use crate::math::Spectrum;
 use crate::render::{RenderSettings, render_quiet};
 use crate::scene::Scene;
+use crate::settings::RenderPatch;
 
 /// What to measure.
 #[derive(Clone, Debug)]
@@ -32,7 +33,7 @@ pub struct ConvergeConfig {
     /// Seeds per point.
     pub seeds: u32,
     /// Flags applied to every strategy.
-    pub base_flags: Vec<String>,
+    pub base: RenderPatch,
     /// The reference.
     pub reference: ReferenceSource,
     /// Report title (default: scene).
@@ -110,10 +111,15 @@ pub fn measure(
         ));
     }
     let scene = load_scene(&config.scene)?;
-    let settings = resolve(&scene, &config.strategies, &config.base_flags, &[])?;
+    let settings = resolve(
+        &scene,
+        &config.strategies,
+        &config.base,
+        &RenderPatch::default(),
+    )?;
     let camera = settings[0].camera(&scene);
     let size = (camera.width, camera.height);
-    let reference = obtain_reference(&scene, &config.reference, &config.base_flags, size, stop)?;
+    let reference = obtain_reference(&scene, &config.reference, &config.base, size, stop)?;
     log(&reference.description);
     let labels: Vec<String> = config.strategies.iter().map(|s| s.label.clone()).collect();
     let series = measure_settings(
@@ -276,7 +282,7 @@ pub fn run_converge(
             .collect(),
     };
     let seeds: Vec<u64> = (0..config.seeds)
-        .map(|k| round_seed(crate::lab::compare::seeds_of(&config.base_flags)[0], k))
+        .map(|k| round_seed(config.base.seed.unwrap_or(0), k))
         .collect();
     let notes = vec![
         format!(

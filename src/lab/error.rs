@@ -1,14 +1,14 @@
-//! Errors of lab experiments: a scene or strategy this build cannot make, bad input, or
-//! a file that could not be written.
+//! Errors of lab experiments: a scene or strategy that cannot be made, bad input, or a
+//! file that could not be written.
 
 use crate::image::io::ImageError;
-use crate::lab::strategy::StrategyError;
 use crate::scene::SceneError;
+use crate::settings::SettingsError;
 
 /// Why an experiment could not run.
 #[derive(Debug, thiserror::Error)]
 pub enum LabError {
-    /// The scene does not load (for a built-in: not built yet, or a typo).
+    /// The scene does not load.
     #[error("{error}")]
     Scene {
         /// The scene as given.
@@ -16,15 +16,15 @@ pub enum LabError {
         /// The loader's error.
         error: SceneError,
     },
-    /// A strategy's flags do not parse in this build.
+    /// A strategy's settings do not fit the scene or each other.
     #[error("strategy \"{label}\" (`{flags}`): {error}")]
     Strategy {
         /// The strategy's label.
         label: String,
         /// Its flags.
         flags: String,
-        /// What the parser said.
-        error: StrategyError,
+        /// What is wrong.
+        error: SettingsError,
     },
     /// Bad input (sizes that do not match, an empty list, ...).
     #[error("{0}")]
@@ -32,16 +32,4 @@ pub enum LabError {
     /// An image or report file could not be read or written.
     #[error(transparent)]
     Io(#[from] ImageError),
-}
-
-impl LabError {
-    /// What is missing, when the error is a scene or strategy this build lacks:
-    /// "scene `builtin:veach-mis`", "estimator `mis`".
-    pub fn missing(&self) -> Option<String> {
-        match self {
-            LabError::Scene { spec, .. } => Some(format!("scene `{spec}`")),
-            LabError::Strategy { error, .. } => Some(error.missing()),
-            _ => None,
-        }
-    }
 }

@@ -11,6 +11,7 @@ use crate::lab::strategy::Strategy;
 use crate::math::Spectrum;
 use crate::render::RenderSettings;
 use crate::scene::{self, Scene};
+use crate::settings::RenderPatch;
 
 /// Loads a scene, naming it in the error.
 pub fn load_scene(spec: &str) -> Result<Scene, LabError> {
@@ -20,23 +21,25 @@ pub fn load_scene(spec: &str) -> Result<Scene, LabError> {
     })
 }
 
-/// Settings of every strategy on `scene` (see [`Strategy::settings`] for the order in
-/// which `base` and `extra` apply). Fails on the first strategy this build cannot make.
+/// Settings of every strategy on `scene`: the scene's defaults, then `base` (the
+/// experiment's flags for every strategy), then the strategy's own patch, then `budget`
+/// (an equal-spp budget); later layers win. Fails on the first strategy that does not fit.
 pub fn resolve(
     scene: &Scene,
     strategies: &[Strategy],
-    base: &[String],
-    extra: &[String],
+    base: &RenderPatch,
+    budget: &RenderPatch,
 ) -> Result<Vec<RenderSettings>, LabError> {
     strategies
         .iter()
         .map(|s| {
-            s.settings(scene, base, extra)
-                .map_err(|error| LabError::Strategy {
+            RenderSettings::build(scene, &[base, &s.patch, budget]).map_err(|error| {
+                LabError::Strategy {
                     label: s.label.clone(),
-                    flags: s.flags.clone(),
+                    flags: s.patch.to_string(),
                     error,
-                })
+                }
+            })
         })
         .collect()
 }
@@ -78,7 +81,7 @@ pub struct ReferenceImage {
 pub fn obtain_reference(
     scene: &Scene,
     source: &ReferenceSource,
-    base: &[String],
+    base: &RenderPatch,
     size: (u32, u32),
     stop: &AtomicBool,
 ) -> Result<ReferenceImage, LabError> {
@@ -108,7 +111,13 @@ pub fn obtain_reference(
             })
         }
         ReferenceSource::Render { strategy, spp } => {
-            let mut settings = resolve(scene, std::slice::from_ref(strategy), base, &[])?.remove(0);
+            let mut settings = resolve(
+                scene,
+                std::slice::from_ref(strategy),
+                base,
+                &RenderPatch::default(),
+            )?
+            .remove(0);
             // Streams of their own: a reference sharing samples with a strategy it judges
             // would favour that strategy.
             settings.seed ^= REFERENCE_SEED_SALT;
@@ -130,7 +139,7 @@ pub fn obtain_reference(
                         spp: r.output.spp,
                         ..settings.clone()
                     }
-                    .flags(),
+                    .patch(),
                     r.output.spp,
                     r.output.time.as_secs_f64(),
                     r.error.mean_rel_error,

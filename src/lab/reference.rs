@@ -135,16 +135,7 @@ pub fn render_reference(
         };
         let out = render(scene, &s, &control);
         passes += 1;
-        let merged = match total.take() {
-            None => out,
-            Some(t) => RenderOutput {
-                film: t.film.merge(&out.film).unwrap_or(t.film),
-                time: Duration::ZERO,
-                spp: t.spp + out.spp,
-                invalid_samples: t.invalid_samples + out.invalid_samples,
-                stopped: out.stopped,
-            },
-        };
+        let merged = RenderOutput::merge(total.take(), out);
         let error = estimate_error(&merged.film);
         progress(merged.spp, &error);
         let converged = target.rel_error.is_some_and(|e| error.worst() <= e);

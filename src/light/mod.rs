@@ -3,23 +3,21 @@
 //! and densities at a shading point.
 
 mod area;
-mod bounds;
-pub mod cone;
 pub mod environment;
-mod estimate;
 mod point;
 mod polygon;
 pub mod select;
 
 pub use area::{AreaLight, EmitterKind, LightPoint, LightSampling, uniform_area_pdf};
-pub use bounds::LightBounds;
 pub use environment::Environment;
 pub use point::PointLight;
 pub use polygon::PolygonLight;
+pub use select::LightBounds;
 
 use glam::{Vec2, Vec3};
 
 use crate::math::Spectrum;
+pub use crate::settings::LightStrategy;
 
 /// What a light needs to know of the point it illuminates.
 #[derive(Clone, Copy, Debug)]
@@ -78,15 +76,21 @@ pub enum Light {
 }
 
 impl Light {
-    /// Draws a direction towards the light from `at`; `None` when the sample carries no
-    /// light (behind the emitter, below the horizon of `at`, or a degenerate case).
+    /// Draws a direction towards the light from `at` with `strategy`; `None` when the
+    /// sample carries no light (behind the emitter, below the horizon of `at`, or a
+    /// degenerate case).
     #[inline]
-    pub fn sample(&self, at: &ShadingPoint, u: Vec2) -> Option<LightSample> {
+    pub fn sample(
+        &self,
+        at: &ShadingPoint,
+        u: Vec2,
+        strategy: LightStrategy,
+    ) -> Option<LightSample> {
         match self {
-            Light::Area(l) => l.sample(at, u),
+            Light::Area(l) => l.sample(at, u, strategy.sampling),
             Light::Point(l) => l.sample(at),
             Light::Environment(e) => {
-                let (w_in, radiance, pdf) = e.sample(u)?;
+                let (w_in, radiance, pdf) = e.sample(u, strategy.env_compensation)?;
                 // Horizon rejection before the shadow ray, as for area lights.
                 (at.n.dot(w_in) > 0.0 && at.ng.dot(w_in) > 0.0).then_some(LightSample {
                     w_in,
@@ -98,16 +102,17 @@ impl Light {
                     normal: -w_in,
                 })
             }
-            Light::Polygon(l) => l.sample(at, u),
+            Light::Polygon(l) => l.sample(at, u, strategy.sampling),
         }
     }
 
     /// For a light at infinity: density per steradian of sampling direction `w` (unit,
-    /// towards the light). Zero for other lights, which a direction alone cannot name.
+    /// towards the light) with `strategy`. Zero for other lights, which a direction alone
+    /// cannot name.
     #[inline]
-    pub fn infinite_pdf(&self, w: Vec3) -> f32 {
+    pub fn infinite_pdf(&self, w: Vec3, strategy: LightStrategy) -> f32 {
         match self {
-            Light::Environment(e) => e.pdf(w),
+            Light::Environment(e) => e.pdf(w, strategy.env_compensation),
             _ => 0.0,
         }
     }
@@ -129,14 +134,14 @@ impl Light {
     }
 
     /// Density per steradian at `at` of sampling the direction towards `y` (a point on
-    /// this light with geometric normal `ny`). Zero for delta lights.
+    /// this light with geometric normal `ny`) with `strategy`. Zero for delta lights.
     #[inline]
-    pub fn pdf(&self, at: &ShadingPoint, y: Vec3, ny: Vec3) -> f32 {
+    pub fn pdf(&self, at: &ShadingPoint, y: Vec3, ny: Vec3, strategy: LightStrategy) -> f32 {
         match self {
-            Light::Area(l) => l.pdf(at, y, ny),
+            Light::Area(l) => l.pdf(at, y, ny, strategy.sampling),
             Light::Point(_) => 0.0,
-            Light::Environment(e) => e.pdf((y - at.p).normalize()),
-            Light::Polygon(l) => l.pdf(at, y, ny),
+            Light::Environment(e) => e.pdf((y - at.p).normalize(), strategy.env_compensation),
+            Light::Polygon(l) => l.pdf(at, y, ny, strategy.sampling),
         }
     }
 
@@ -157,16 +162,6 @@ impl Light {
             Light::Point(l) => l.power(),
             Light::Environment(e) => e.power(),
             Light::Polygon(l) => l.power(),
-        }
-    }
-
-    /// Sets the sampling strategy of an area or polygon light (point lights have none).
-    /// The light uses the strategy of that name where its shape has one, else `area`.
-    pub fn set_sampling(&mut self, sampling: LightSampling) {
-        match self {
-            Light::Area(l) => l.sampling = sampling,
-            Light::Polygon(l) => l.sampling = sampling,
-            Light::Point(_) | Light::Environment(_) => {}
         }
     }
 

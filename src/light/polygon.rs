@@ -37,8 +37,6 @@ pub struct PolygonLight {
     pub radiance: Spectrum,
     /// Emits from both sides (default: only the side of the polygon's normal).
     pub two_sided: bool,
-    /// Sampling strategy as asked for; [`PolygonLight::strategy`] is the one in use.
-    pub sampling: LightSampling,
 }
 
 /// The uniform source of rejection sampling from one point `u`: `u` itself first (so a
@@ -70,21 +68,19 @@ impl Uniform for ReusedUniform {
 }
 
 impl PolygonLight {
-    /// A one-sided polygon emitter (front side: right-handed with the vertex order), sampled
-    /// with `best`.
+    /// A one-sided polygon emitter (front side: right-handed with the vertex order).
     pub fn new(vertices: &[Vec3], radiance: Spectrum) -> Result<PolygonLight, PolygonError> {
         Ok(PolygonLight {
             polygon: Polygon::new(vertices)?,
             radiance,
             two_sided: false,
-            sampling: LightSampling::Best,
         })
     }
 
-    /// The strategy in use: [`PolygonLight::sampling`] resolved for polygons.
+    /// The strategy in use when `sampling` is asked for: resolved for polygons.
     #[inline]
-    pub fn strategy(&self) -> LightSampling {
-        self.sampling.resolve(EmitterKind::Polygon)
+    pub fn strategy(sampling: LightSampling) -> LightSampling {
+        sampling.resolve(EmitterKind::Polygon)
     }
 
     /// Radiance leaving a point of the polygon in direction `w`.
@@ -123,11 +119,17 @@ impl PolygonLight {
             .sum()
     }
 
-    /// Draws a point with the strategy in use and returns it as a direction from `at`;
-    /// `None` when it carries no light (see [`AreaLight::sample`](super::AreaLight::sample)).
-    pub fn sample(&self, at: &ShadingPoint, u: Vec2) -> Option<LightSample> {
+    /// Draws a point with strategy `sampling` (resolved for polygons) and returns it as a
+    /// direction from `at`; `None` when it carries no light (see
+    /// [`AreaLight::sample`](super::AreaLight::sample)).
+    pub fn sample(
+        &self,
+        at: &ShadingPoint,
+        u: Vec2,
+        sampling: LightSampling,
+    ) -> Option<LightSample> {
         let n = self.polygon.normal();
-        let point = if self.strategy() == LightSampling::SolidAngle {
+        let point = if Self::strategy(sampling) == LightSampling::SolidAngle {
             self.sample_solid_angle(at, u)?
         } else {
             let (y, _) = self.polygon.sample_rejection(&mut ReusedUniform::new(u));
@@ -175,16 +177,21 @@ impl PolygonLight {
         Some(LightPoint {
             y,
             ny: n,
-            pdf: self.pdf(at, y, n),
+            pdf: self.solid_angle_pdf(at, y, n),
         })
     }
 
     /// Density per steradian at `at` of the direction towards `y` (a point of the polygon
-    /// with normal `ny`) with the strategy in use.
-    pub fn pdf(&self, at: &ShadingPoint, y: Vec3, ny: Vec3) -> f32 {
-        if self.strategy() != LightSampling::SolidAngle {
+    /// with normal `ny`) with strategy `sampling` (resolved for polygons).
+    pub fn pdf(&self, at: &ShadingPoint, y: Vec3, ny: Vec3, sampling: LightSampling) -> f32 {
+        if Self::strategy(sampling) != LightSampling::SolidAngle {
             return uniform_area_pdf(at.p, y, ny, self.polygon.area());
         }
+        self.solid_angle_pdf(at, y, ny)
+    }
+
+    /// The density of [`PolygonLight::sample_solid_angle`].
+    fn solid_angle_pdf(&self, at: &ShadingPoint, y: Vec3, ny: Vec3) -> f32 {
         let total = self.total_solid_angle(at.p);
         if !(total > 0.0 && total.is_finite()) {
             return 0.0;

@@ -8,9 +8,3 @@ pub type Spectrum = glam::Vec3;
 pub fn luminance(c: Spectrum) -> f32 {
     0.212_671 * c.x + 0.715_160 * c.y + 0.072_169 * c.z
 }
-
-/// True when every channel is finite.
-#[inline]
-pub fn is_finite(c: Spectrum) -> bool {
-    c.is_finite()
-}

@@ -1,10 +1,10 @@
 //! Rendering: tiles in parallel (rayon), one sampler stream per (seed, pixel, sample),
 //! rounds of samples so a stop request still leaves a whole image, and a progress bar.
 
-pub mod camera;
 mod settings;
 
-pub use settings::{Pass, RenderSettings};
+pub use crate::settings::Pass;
+pub use settings::RenderSettings;
 
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -14,7 +14,7 @@ use glam::{DVec3, Vec2};
 use rayon::prelude::*;
 
 use crate::image::{Film, Filter, PixelStats};
-use crate::integrator::{Estimator, EstimatorKind};
+use crate::integrator::Estimator;
 use crate::math::Spectrum;
 use crate::sampling::{Sampler, Uniform};
 use crate::scene::Scene;
@@ -37,6 +37,28 @@ pub struct RenderOutput {
     pub stopped: bool,
 }
 
+impl RenderOutput {
+    /// `next` (a render of further samples of the same image, with its own streams)
+    /// added to `total`: films merged by Chan's rule, spp and invalid samples summed, the
+    /// stop flag of the later render. The time is left to the caller (zero here).
+    pub fn merge(total: Option<RenderOutput>, next: RenderOutput) -> RenderOutput {
+        match total {
+            None => next,
+            Some(t) if next.spp == 0 => RenderOutput {
+                stopped: next.stopped,
+                ..t
+            },
+            Some(t) => RenderOutput {
+                film: t.film.merge(&next.film).unwrap_or(t.film),
+                time: Duration::ZERO,
+                spp: t.spp + next.spp,
+                invalid_samples: t.invalid_samples + next.invalid_samples,
+                stopped: next.stopped,
+            },
+        }
+    }
+}
+
 /// Hooks a render reports to and listens to.
 pub struct Control<'a> {
     /// Called with (samples done, samples total) after each round.
@@ -47,15 +69,13 @@ pub struct Control<'a> {
 
 /// Renders `scene` with `settings`.
 pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -> RenderOutput {
-    // The light-sampling strategy lives in the lights, where every estimator asks for it.
-    let scene = &*scene.with_light_sampling(settings.light_sampling);
-    // MIS compensation makes environment sampling unbiased only under MIS.
-    let compensate = settings.envmap_compensation && settings.estimator == EstimatorKind::Mis;
-    let scene = &*scene.with_env_compensation(compensate);
     let camera = settings.camera(scene);
     let (w, h) = (camera.width, camera.height);
-    let estimator =
-        Estimator::new(scene, settings.estimator, settings.light_select).with_mis(settings.mis);
+    // The light strategy travels with the estimator to every light it asks.
+    let estimator = Estimator::new(scene, settings.estimator, settings.light_select)
+        .with_mis(settings.mis)
+        .with_light_strategy(settings.light_strategy())
+        .with_ris_candidates(settings.ris_candidates);
     let (first, last) = settings.pass.sample_range(settings.spp);
     let mut film = Film::new(w, h);
     let tiles = tiles(w, h);

@@ -1,63 +1,12 @@
-//! Everything that describes a render besides the scene: strategies, sampler, sample
-//! budget, seed, resolution and pass. Every strategy is a value with one CLI name.
-
-use std::fmt;
-use std::str::FromStr;
+//! Everything that describes a render besides the scene, complete and validated: built
+//! once per render from the defaults and the [`RenderPatch`] layers over them.
 
 use crate::image::Filter;
-use crate::integrator::{EstimatorKind, MisSettings};
-use crate::light::LightSampling;
-use crate::light::select::LightSelect;
-use crate::render::camera::Camera;
-use crate::sampling::SamplerKind;
-use crate::scene::Scene;
-
-/// The share of the samples a render computes: pass `index` of `count` (1-based in the
-/// CLI as `I/N`, stored 0-based).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Pass {
-    /// 0-based pass index.
-    pub index: u32,
-    /// Number of passes.
-    pub count: u32,
-}
-
-impl Pass {
-    /// The whole render.
-    pub const WHOLE: Pass = Pass { index: 0, count: 1 };
-
-    /// Sample indices [first, last) of this pass out of `spp`: the same indices (and so
-    /// the same random streams) a single render would use for them.
-    pub fn sample_range(&self, spp: u32) -> (u32, u32) {
-        let split = |i: u32| ((spp as u64 * i as u64) / self.count as u64) as u32;
-        (split(self.index), split(self.index + 1))
-    }
-}
-
-impl fmt::Display for Pass {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}/{}", self.index + 1, self.count)
-    }
-}
-
-impl FromStr for Pass {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        let err = || format!("bad pass \"{s}\": expected I/N with 1 ≤ I ≤ N, e.g. 2/8");
-        let (i, n) = s.split_once('/').ok_or_else(err)?;
-        let (i, n): (u32, u32) = (
-            i.trim().parse().map_err(|_| err())?,
-            n.trim().parse().map_err(|_| err())?,
-        );
-        if i == 0 || n == 0 || i > n {
-            return Err(err());
-        }
-        Ok(Pass {
-            index: i - 1,
-            count: n,
-        })
-    }
-}
+use crate::scene::{Camera, Scene};
+use crate::settings::{
+    DEFAULT_RIS_CANDIDATES, EstimatorKind, LightSampling, LightSelect, LightStrategy, MAX_PIXELS,
+    MisSettings, Pass, RenderPatch, SamplerKind, SettingsError,
+};
 
 /// A complete description of how to render a scene.
 #[derive(Clone, Debug, PartialEq)]
@@ -70,6 +19,8 @@ pub struct RenderSettings {
     pub light_sampling: LightSampling,
     /// Light selection.
     pub light_select: LightSelect,
+    /// Candidates per light sample when `light_select` is `ris`.
+    pub ris_candidates: u32,
     /// Random number source.
     pub sampler: SamplerKind,
     /// Samples per pixel (of the whole render, over all passes).
@@ -82,7 +33,7 @@ pub struct RenderSettings {
     pub pass: Pass,
     /// Pixel reconstruction filter (the one-pixel box unless a scene file asks).
     pub filter: Filter,
-    /// MIS compensation of environment-map sampling (Karlík et al. 2019); applied only
+    /// MIS compensation of environment-map sampling (Karlík et al. 2019); allowed only
     /// with the `mis` estimator, where it stays unbiased.
     pub envmap_compensation: bool,
 }
@@ -90,23 +41,53 @@ pub struct RenderSettings {
 impl RenderSettings {
     /// The defaults for `scene`: MIS (one light and one BSDF sample, power heuristic) with
     /// the best light sampling per shape, light-BVH selection and the Sobol sampler at the
-    /// scene's spp, and the one-pixel box filter; a scene file's requests (filter, sampler,
-    /// seed, MIS sample counts) replace these.
+    /// scene's spp, and the scene's filter, with the scene file's requests laid over them.
     pub fn for_scene(scene: &Scene) -> RenderSettings {
-        let asked = &scene.requested;
-        RenderSettings {
-            estimator: EstimatorKind::Mis,
-            mis: asked.mis.unwrap_or_default(),
-            light_sampling: LightSampling::Best,
-            light_select: LightSelect::Bvh,
-            sampler: asked.sampler.unwrap_or(SamplerKind::Sobol),
-            spp: scene.spp,
-            seed: asked.seed.unwrap_or(0),
-            resolution: None,
-            pass: Pass::WHOLE,
-            filter: asked.filter,
-            envmap_compensation: false,
+        Self::build(scene, &[]).expect("a scene's own requests are valid")
+    }
+
+    /// The settings for `scene`: the defaults, then the scene file's requests, then each
+    /// of `layers` in order (for instance the command line, a lab strategy, an
+    /// experiment's budget); a later layer wins field by field. Checks what a layer alone
+    /// cannot: the image size in pixels, and compensation only with `mis`.
+    pub fn build(scene: &Scene, layers: &[&RenderPatch]) -> Result<RenderSettings, SettingsError> {
+        let p = layers
+            .iter()
+            .fold(scene.requested.clone(), |acc, layer| acc.then(layer));
+        p.validate()?;
+        let defaults = MisSettings::default();
+        let s = RenderSettings {
+            estimator: p.estimator.unwrap_or(EstimatorKind::Mis),
+            mis: MisSettings {
+                heuristic: p.mis.unwrap_or(defaults.heuristic),
+                light_samples: p.light_samples.unwrap_or(defaults.light_samples),
+                bsdf_samples: p.bsdf_samples.unwrap_or(defaults.bsdf_samples),
+            },
+            light_sampling: p.light_sampling.unwrap_or(LightSampling::Best),
+            light_select: p.light_select.unwrap_or(LightSelect::Bvh),
+            ris_candidates: p.ris_candidates.unwrap_or(DEFAULT_RIS_CANDIDATES),
+            sampler: p.sampler.unwrap_or(SamplerKind::Sobol),
+            spp: p.spp.unwrap_or(scene.spp),
+            seed: p.seed.unwrap_or(0),
+            resolution: resolution(&scene.camera, p.width, p.height),
+            pass: p.pass.unwrap_or(Pass::WHOLE),
+            filter: scene.filter,
+            envmap_compensation: p.envmap_compensation.unwrap_or(false),
+        };
+        if s.envmap_compensation && s.estimator != EstimatorKind::Mis {
+            return Err(SettingsError::Conflict(format!(
+                "--envmap-compensation is unbiased only with --estimator mis, not {}",
+                s.estimator
+            )));
         }
+        if let Some((w, h)) = s.resolution
+            && (w == 0 || h == 0 || w as u64 * h as u64 > MAX_PIXELS)
+        {
+            return Err(SettingsError::Conflict(format!(
+                "--width {w} --height {h}: image size is out of range (1 to {MAX_PIXELS} pixels)"
+            )));
+        }
+        Ok(s)
     }
 
     /// The camera with the resolution override applied.
@@ -117,47 +98,85 @@ impl RenderSettings {
         }
     }
 
-    /// The strategy flags that reproduce these settings on the command line.
-    pub fn flags(&self) -> String {
-        let compensation = if self.envmap_compensation {
-            " --envmap-compensation"
-        } else {
-            ""
-        };
-        format!(
-            "--estimator {} --mis {} --light-samples {} --bsdf-samples {} --light-sampling {} \
-             --light-select {} --sampler {} --spp {} --seed {}{}",
-            self.estimator,
-            self.mis.heuristic,
-            self.mis.light_samples,
-            self.mis.bsdf_samples,
-            self.light_sampling,
-            self.light_select,
-            self.sampler,
-            self.spp,
-            self.seed,
-            compensation
-        )
+    /// How lights are sampled: the per-shape strategy, and MIS compensation of the
+    /// environment, which only the `mis` estimator uses.
+    pub fn light_strategy(&self) -> LightStrategy {
+        LightStrategy {
+            sampling: self.light_sampling,
+            env_compensation: self.envmap_compensation && self.estimator == EstimatorKind::Mis,
+        }
+    }
+
+    /// Every setting as a patch: laid over any scene it gives these settings back (the
+    /// resolution only when overridden, the pass only when partial).
+    pub fn patch(&self) -> RenderPatch {
+        RenderPatch {
+            estimator: Some(self.estimator),
+            mis: Some(self.mis.heuristic),
+            light_samples: Some(self.mis.light_samples),
+            bsdf_samples: Some(self.mis.bsdf_samples),
+            light_sampling: Some(self.light_sampling),
+            light_select: Some(self.light_select),
+            ris_candidates: (self.light_select == LightSelect::Ris).then_some(self.ris_candidates),
+            sampler: Some(self.sampler),
+            spp: Some(self.spp),
+            seed: Some(self.seed),
+            width: self.resolution.map(|r| r.0),
+            height: self.resolution.map(|r| r.1),
+            pass: (self.pass != Pass::WHOLE).then_some(self.pass),
+            envmap_compensation: self.envmap_compensation.then_some(true),
+        }
+    }
+}
+
+/// The image size for `width`/`height` overrides: a missing side follows the camera's
+/// aspect ratio; `None` keeps the camera's own size.
+fn resolution(camera: &Camera, width: Option<u32>, height: Option<u32>) -> Option<(u32, u32)> {
+    let (cw, ch) = (camera.width as u64, camera.height as u64);
+    let follow = |given: u32, num: u64, den: u64| {
+        ((given as u64 * num) / den).clamp(1, u32::MAX as u64) as u32
+    };
+    match (width, height) {
+        (None, None) => None,
+        (Some(w), None) => Some((w, follow(w, ch, cw))),
+        (None, Some(h)) => Some((follow(h, cw, ch), h)),
+        (Some(w), Some(h)) => Some((w, h)),
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene;
 
     #[test]
-    fn passes_partition_the_samples() {
-        let spp = 37;
-        let mut next = 0;
-        for i in 0..5 {
-            let (a, b) = Pass { index: i, count: 5 }.sample_range(spp);
-            assert_eq!(a, next);
-            next = b;
-        }
-        assert_eq!(next, spp);
-        assert_eq!("2/8".parse::<Pass>().unwrap(), Pass { index: 1, count: 8 });
-        for bad in ["0/3", "4/3", "x", "1/0"] {
-            assert!(bad.parse::<Pass>().is_err());
-        }
+    fn layers_apply_in_order_and_round_trip() {
+        let scene = scene::load("builtin:assignment").unwrap();
+        let cli: RenderPatch = "--width 64 --seed 3 --estimator light".parse().unwrap();
+        let strategy: RenderPatch = "--estimator cosine".parse().unwrap();
+        let s = RenderSettings::build(&scene, &[&cli, &strategy, &RenderPatch::spp(7)]).unwrap();
+        assert_eq!((s.estimator, s.seed, s.spp), (EstimatorKind::Cosine, 3, 7));
+        let (cw, ch) = (scene.camera.width, scene.camera.height);
+        assert_eq!(s.resolution, Some((64, 64 * ch / cw)));
+        assert_eq!(RenderSettings::build(&scene, &[&s.patch()]).unwrap(), s);
+        assert_eq!(
+            RenderSettings::for_scene(&scene).patch().to_string(),
+            "--estimator mis --mis power --light-samples 1 --bsdf-samples 1 --light-sampling best \
+             --light-select bvh --sampler sobol --spp 16 --seed 0"
+                .replace("--spp 16", &format!("--spp {}", scene.spp))
+        );
+    }
+
+    #[test]
+    fn combinations_are_checked() {
+        let scene = scene::load("builtin:assignment").unwrap();
+        let bad = |text: &str| {
+            let p: RenderPatch = text.parse().unwrap();
+            RenderSettings::build(&scene, &[&p])
+                .unwrap_err()
+                .to_string()
+        };
+        assert!(bad("--envmap-compensation --estimator light").contains("--estimator mis"));
+        assert!(bad("--width 32768 --height 32768").contains("--width 32768 --height 32768"));
     }
 }

@@ -1,5 +1,5 @@
-//! Sampling: warps from the unit square, tabulated distributions, MIS weights and the
-//! per-sample random streams, plus the chi-square machinery that checks every sampler
+//! Sampling: warps from the unit square, tabulated distributions and the per-sample
+//! random streams (MIS weights live with the `mis` estimator), plus the chi-square machinery that checks every sampler
 //! against its pdf and the registry of named warps that tests and the CLI share.
 //! Knows nothing of scenes.
 

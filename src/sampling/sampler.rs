@@ -28,17 +28,7 @@ impl Uniform for Rng32 {
     }
 }
 
-named_enum! {
-    /// Which sampler a render uses; parsed from and shown as its CLI name.
-    pub enum SamplerKind: "sampler" {
-        /// Independent uniform numbers from PCG32.
-        Independent => "independent",
-        /// Jittered strata in every dimension, decorrelated across dimensions by permutation.
-        Stratified => "stratified",
-        /// Owen-scrambled Sobol points (Burley 2020, "Practical Hash-based Owen Scrambling").
-        Sobol => "sobol",
-    }
-}
+pub use crate::settings::SamplerKind;
 
 /// Sobol points exist for sample indices below 2¹⁶ (the `sobol_burley` crate's limit);
 /// later samples fall back to independent numbers.

@@ -3,13 +3,15 @@
 use glam::Vec3;
 
 use super::texture::MaterialTexture;
-use super::{Requested, Scene, SceneError};
+use super::{Scene, SceneError};
 use crate::bsdf::Material;
 use crate::geometry::shape::{Disk, Rectangle, Sphere, Triangle};
 use crate::geometry::{Geometry, Mesh, NO_LIGHT, Primitive, Shape};
-use crate::light::{AreaLight, Environment, Light, LightSampling, PointLight, PolygonLight};
+use crate::image::Filter;
+use crate::light::{AreaLight, Environment, Light, PointLight, PolygonLight};
 use crate::math::Spectrum;
-use crate::render::camera::Camera;
+use crate::scene::Camera;
+use crate::settings::RenderPatch;
 
 /// Emission of a shape: radiance and sidedness.
 #[derive(Clone, Copy, Debug)]
@@ -92,7 +94,6 @@ impl SceneBuilder {
                     shape,
                     radiance: e.radiance,
                     two_sided: e.two_sided,
-                    sampling: LightSampling::Best,
                 }));
                 self.lights.len() as u32 - 1
             }
@@ -307,7 +308,8 @@ impl SceneBuilder {
             environment,
             spp,
             two_sided: self.two_sided,
-            requested: Requested::default(),
+            filter: Filter::default(),
+            requested: RenderPatch::default(),
             textures: self.textures,
         })
     }

@@ -1,25 +1,27 @@
 //! Scenes: what to render (camera, geometry, materials, lights) and where scenes come
-//! from (built-in builders; scene files later). `Scene` is validated when built.
+//! from (built-in builders, Mitsuba 3 XML files, mesh files, textures). `Scene` is
+//! validated when built. A scene names the render settings it asks for as a
+//! [`RenderPatch`] of the `settings` vocabulary, never in the renderer's types.
 
 pub mod builder;
 pub mod builtin;
+pub mod camera;
+mod environment;
 mod error;
 pub mod mesh_io;
 pub mod texture;
 pub mod xml;
 
 pub use builder::SceneBuilder;
+pub use camera::Camera;
+pub use environment::environment_from_file;
 pub use error::SceneError;
 
 use crate::bsdf::Material;
 use crate::geometry::Geometry;
 use crate::image::Filter;
-use crate::integrator::MisSettings;
-use std::borrow::Cow;
-
-use crate::light::{Light, LightSampling};
-use crate::render::camera::Camera;
-use crate::sampling::SamplerKind;
+use crate::light::Light;
+use crate::settings::RenderPatch;
 use texture::MaterialTexture;
 
 /// A scene ready to render.
@@ -42,24 +44,13 @@ pub struct Scene {
     /// Materials that reflect from both sides (Mitsuba's `twosided`), by material index;
     /// missing entries are one-sided.
     pub two_sided: Vec<bool>,
-    /// Render settings the scene file asks for.
-    pub requested: Requested,
+    /// Pixel reconstruction filter the scene file asks for (default: the one-pixel box).
+    pub filter: Filter,
+    /// Render settings the scene file asks for (sampler, seed, MIS); the command line
+    /// overrides them.
+    pub requested: RenderPatch,
     /// Reflectance textures, by material index; missing entries are untextured.
     pub textures: Vec<Option<MaterialTexture>>,
-}
-
-/// Render settings a scene file asks for; `None` leaves the renderer's default. Command-
-/// line flags override them.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Requested {
-    /// Pixel reconstruction filter (default: the one-pixel box).
-    pub filter: Filter,
-    /// Random number source.
-    pub sampler: Option<SamplerKind>,
-    /// Seed.
-    pub seed: Option<u64>,
-    /// MIS sample counts and heuristic.
-    pub mis: Option<MisSettings>,
 }
 
 impl Scene {
@@ -70,43 +61,6 @@ impl Scene {
         match self.environment {
             Some(i) => self.lights[i].infinite_radiance(w),
             None => crate::math::Spectrum::ZERO,
-        }
-    }
-
-    /// This scene with every area and polygon light sampled by `sampling` (where a shape
-    /// lacks that strategy it uses `area`): borrowed when nothing changes, else a copy.
-    pub fn with_light_sampling(&self, sampling: LightSampling) -> Cow<'_, Scene> {
-        let unchanged = self.lights.iter().all(|l| match l {
-            Light::Area(a) => a.sampling == sampling,
-            Light::Polygon(p) => p.sampling == sampling,
-            Light::Point(_) | Light::Environment(_) => true,
-        });
-        if unchanged {
-            return Cow::Borrowed(self);
-        }
-        let mut scene = self.clone();
-        for light in &mut scene.lights {
-            light.set_sampling(sampling);
-        }
-        Cow::Owned(scene)
-    }
-
-    /// This scene with MIS compensation of its environment map on or off (see
-    /// [`Environment::set_compensation`](crate::light::Environment::set_compensation)):
-    /// borrowed when nothing changes, else a copy.
-    pub fn with_env_compensation(&self, on: bool) -> Cow<'_, Scene> {
-        let Some(i) = self.environment else {
-            return Cow::Borrowed(self);
-        };
-        match &self.lights[i] {
-            Light::Environment(e) if e.compensated() != on => {
-                let mut scene = self.clone();
-                if let Light::Environment(e) = &mut scene.lights[i] {
-                    e.set_compensation(on);
-                }
-                Cow::Owned(scene)
-            }
-            _ => Cow::Borrowed(self),
         }
     }
 

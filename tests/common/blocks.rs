@@ -4,6 +4,10 @@
 //! is local to a region visible.
 
 use lightlab::image::Film;
+use lightlab::math::Spectrum;
+use lightlab::render::{RenderSettings, render_quiet};
+use lightlab::sampling::SamplerKind;
+use lightlab::scene::Scene;
 
 /// Per 16×16 block: the sum of the pixel means (RGB summed) and the variance of that sum.
 pub fn blocks(film: &Film) -> Vec<(f64, f64)> {
@@ -37,4 +41,61 @@ pub fn worst(z: &[f64]) -> f64 {
     z.iter()
         .copied()
         .fold(0f64, |w, z| if z.abs() > w.abs() { z } else { w })
+}
+
+/// Per-block variance of the mean of a reference from its per-pixel variances: channels
+/// taken as fully correlated (an upper bound), pixels as independent (exact for the box
+/// filter).
+pub fn block_variances(variance: &[Spectrum], w: u32, h: u32, block: u32) -> Vec<f64> {
+    let per_pixel: Vec<Spectrum> = variance
+        .iter()
+        .map(|v| {
+            let sd = v.max(Spectrum::ZERO).to_array().map(f32::sqrt);
+            // Var((R + G + B)/3) with fully correlated channels.
+            Spectrum::splat(((sd[0] + sd[1] + sd[2]) / 3.0).powi(2))
+        })
+        .collect();
+    // The block mean of n independent pixels: Var = Σ var / n² = (mean var) / n.
+    let n = (block * block) as f64;
+    block_means(&per_pixel, w, h, block)
+        .into_iter()
+        .map(|v| v / n)
+        .collect()
+}
+
+/// Per `block`×`block` means of one image (channels averaged).
+pub fn block_means(rgb: &[Spectrum], w: u32, h: u32, block: u32) -> Vec<f64> {
+    let (bw, bh) = (w.div_ceil(block), h.div_ceil(block));
+    let mut sums = vec![(0.0f64, 0u32); (bw * bh) as usize];
+    for y in 0..h {
+        for x in 0..w {
+            let b = ((y / block) * bw + x / block) as usize;
+            sums[b].0 += rgb[(y * w + x) as usize].element_sum() as f64 / 3.0;
+            sums[b].1 += 1;
+        }
+    }
+    sums.iter().map(|(s, n)| s / *n as f64).collect()
+}
+
+/// `scene` rendered small for a per-block test: 48×32 pixels, `spp` independent samples
+/// under `seed`, with `set` changing the settings; every pixel must be finite.
+pub fn render_small(
+    scene: &Scene,
+    spp: u32,
+    seed: u64,
+    set: impl FnOnce(&mut RenderSettings),
+) -> Film {
+    let mut s = RenderSettings::for_scene(scene);
+    s.spp = spp;
+    s.seed = seed;
+    s.sampler = SamplerKind::Independent;
+    s.resolution = Some((48, 32));
+    set(&mut s);
+    let film = render_quiet(scene, &s).film;
+    assert!(
+        film.pixels.iter().all(|p| p.mean.is_finite()),
+        "{}: non-finite pixel",
+        s.patch()
+    );
+    film
 }

@@ -20,9 +20,15 @@ pub const SIGNIFICANCE: f64 = 0.01;
 /// Fixed seed of every chi-square stream.
 pub const SEED: u64 = 0x5eed_c412;
 
-/// Šidák-corrected level for one of `tests` tests: 1 − (1 − α)^(1/tests).
+/// Šidák-corrected level for one of `tests` tests at family-wise level `alpha`:
+/// 1 − (1 − α)^(1/tests).
+pub fn sidak(alpha: f64, tests: usize) -> f64 {
+    1.0 - (1.0 - alpha).powf(1.0 / tests.max(1) as f64)
+}
+
+/// [`sidak`] at the chi-square tables' level [`SIGNIFICANCE`].
 pub fn sidak_alpha(tests: usize) -> f64 {
-    1.0 - (1.0 - SIGNIFICANCE).powf(1.0 / tests.max(1) as f64)
+    sidak(SIGNIFICANCE, tests)
 }
 
 /// Where failing histograms go: `target/chi2-failures/`.

@@ -43,7 +43,7 @@ pub fn floor_under_rectangle(
     floor: lightlab::bsdf::Material,
 ) -> (lightlab::scene::Scene, [Vec3; 4]) {
     use lightlab::math::Spectrum;
-    use lightlab::render::camera::Camera;
+    use lightlab::scene::Camera;
     use lightlab::scene::SceneBuilder;
     use lightlab::scene::builder::Emission;
 

@@ -2,10 +2,12 @@
 //! down onto the plane z = 0 region, every strategy each shape has, and the points it is
 //! seen from (near, far, grazing, partly below the horizon).
 
-use glam::{DVec3, Vec3};
+use glam::{DVec3, Vec2, Vec3};
 use lightlab::geometry::shape::{Disk, Rectangle, Sphere, Triangle};
 use lightlab::geometry::{Ray, Shape};
-use lightlab::light::{AreaLight, Light, LightSampling, PolygonLight, ShadingPoint};
+use lightlab::light::{
+    AreaLight, Light, LightSample, LightSampling, LightStrategy, PolygonLight, ShadingPoint,
+};
 use lightlab::math::{PI, Spectrum};
 use lightlab::sampling::warp::spherical_triangle_solid_angle;
 
@@ -98,10 +100,31 @@ fn shape_of(shape: TestShape) -> Shape {
     }
 }
 
+/// A light and the strategy it is sampled with (in a render, the estimator carries the
+/// strategy to the light).
+pub struct TestLight {
+    /// The light.
+    pub light: Light,
+    /// How it is sampled.
+    pub strategy: LightStrategy,
+}
+
+impl TestLight {
+    /// `Light::sample` with this strategy.
+    pub fn sample(&self, at: &ShadingPoint, u: Vec2) -> Option<LightSample> {
+        self.light.sample(at, u, self.strategy)
+    }
+
+    /// `Light::pdf` with this strategy.
+    pub fn pdf(&self, at: &ShadingPoint, y: Vec3, ny: Vec3) -> f32 {
+        self.light.pdf(at, y, ny, self.strategy)
+    }
+}
+
 /// The light of `shape` sampled with `strategy`.
-pub fn light(shape: TestShape, strategy: LightSampling) -> Light {
+pub fn light(shape: TestShape, strategy: LightSampling) -> TestLight {
     let radiance = Spectrum::splat(RADIANCE);
-    let mut light = match shape {
+    let light = match shape {
         TestShape::Polygon => {
             Light::Polygon(PolygonLight::new(&polygon_vertices(), radiance).expect("polygon"))
         }
@@ -109,11 +132,12 @@ pub fn light(shape: TestShape, strategy: LightSampling) -> Light {
             shape: shape_of(shape),
             radiance,
             two_sided: false,
-            sampling: strategy,
         }),
     };
-    light.set_sampling(strategy);
-    light
+    TestLight {
+        light,
+        strategy: strategy.into(),
+    }
 }
 
 /// A shading point at `p` with normal `n`.
@@ -180,9 +204,9 @@ pub fn hit(light: &Light, at: &ShadingPoint, w: Vec3) -> Option<(Vec3, Vec3)> {
 /// The density per steradian of the light's strategy for direction `w` from `at`, zero
 /// where a sample would carry no light (missing the light, below the horizon, or seeing
 /// the light's back): the density of the directions `sample` returns.
-pub fn direction_pdf(light: &Light, at: &ShadingPoint, w: Vec3) -> f32 {
-    match hit(light, at, w) {
-        Some((y, ny)) if at.n.dot(w) > 0.0 && light.emitted(ny, -w) != Spectrum::ZERO => {
+pub fn direction_pdf(light: &TestLight, at: &ShadingPoint, w: Vec3) -> f32 {
+    match hit(&light.light, at, w) {
+        Some((y, ny)) if at.n.dot(w) > 0.0 && light.light.emitted(ny, -w) != Spectrum::ZERO => {
             light.pdf(at, y, ny)
         }
         _ => 0.0,

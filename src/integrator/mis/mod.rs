@@ -17,70 +17,28 @@ mod weights;
 
 pub use weights::{MisHeuristic, mis_weight};
 
-use glam::Vec3;
-
-use super::{emitted_at, f_cos};
-use crate::bsdf::{Bsdf, Material};
-use crate::geometry::{NO_LIGHT, Ray, SurfaceHit, offset_origin};
-use crate::light::ShadingPoint;
-use crate::light::select::{LightSelector, Selector};
+use super::{Context, emitted_at, f_cos};
+use crate::bsdf::Bsdf;
+use crate::geometry::{NO_LIGHT, Ray, offset_origin};
+use crate::light::select::LightSelector;
 use crate::math::Spectrum;
 use crate::sampling::Uniform;
-use crate::scene::Scene;
 
-/// How the `mis` estimator spends and weights its samples.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct MisSettings {
-    /// Weighting heuristic or the one-sample model.
-    pub heuristic: MisHeuristic,
-    /// Light samples per estimate (N).
-    pub light_samples: u32,
-    /// BSDF samples per estimate (M).
-    pub bsdf_samples: u32,
-}
-
-impl Default for MisSettings {
-    /// One light and one BSDF sample, power heuristic (Veach's recommendation).
-    fn default() -> Self {
-        MisSettings {
-            heuristic: MisHeuristic::Power,
-            light_samples: 1,
-            bsdf_samples: 1,
-        }
-    }
-}
-
-/// The scene and shading context every sample of one estimate shares.
-pub(super) struct Context<'a> {
-    pub scene: &'a Scene,
-    pub selector: &'a Selector,
-    pub at: &'a ShadingPoint,
-    pub hit: &'a SurfaceHit,
-    pub material: &'a Material,
-    /// w_out in the local shading frame.
-    pub w_out: Vec3,
-}
+pub use crate::settings::MisSettings;
 
 /// One estimate of the `mis` estimator.
 pub(super) fn estimate(ctx: &Context<'_>, mis: MisSettings, src: &mut impl Uniform) -> Spectrum {
     let (n, m) = (mis.light_samples as f32, mis.bsdf_samples as f32);
     if mis.heuristic == MisHeuristic::OneSample {
         let c_light = n / (n + m);
+        // f / Σ_k c_k p_k: the balance heuristic over the choice probability.
+        let scale =
+            |p_light: f32, p_bsdf: f32| 1.0 / (c_light * p_light + (1.0 - c_light) * p_bsdf);
         let u = src.next_1d();
         return if u < c_light {
-            light_sample(
-                ctx,
-                src,
-                |p_light, p_bsdf| 1.0 / (c_light * p_light + (1.0 - c_light) * p_bsdf),
-                1.0 / c_light,
-            )
+            light_sample(ctx, src, scale, 1.0 / c_light)
         } else {
-            bsdf_sample(
-                ctx,
-                src,
-                |p_bsdf, p_light| 1.0 / (c_light * p_light + (1.0 - c_light) * p_bsdf),
-                1.0 / (1.0 - c_light),
-            )
+            bsdf_sample(ctx, src, |pb, pl| scale(pl, pb), 1.0 / (1.0 - c_light))
         };
     }
     let h = mis.heuristic;
@@ -112,13 +70,16 @@ fn light_sample(
     scale: impl Fn(f32, f32) -> f32,
     delta_scale: f32,
 ) -> Spectrum {
+    if let Some(m) = ctx.ris {
+        return resampled_light_sample(ctx, src, m, scale, delta_scale);
+    }
     let u_select = src.next_1d();
     let u_point = src.next_2d();
     let Some(sel) = ctx.selector.select(ctx.at, u_select) else {
         return Spectrum::ZERO;
     };
     let light = &ctx.scene.lights[sel.index];
-    let Some(ls) = light.sample(ctx.at, u_point) else {
+    let Some(ls) = light.sample(ctx.at, u_point, ctx.lights) else {
         return Spectrum::ZERO;
     };
     let w_in = ctx.hit.frame.to_local(ls.w_in);
@@ -126,13 +87,7 @@ fn light_sample(
     if f == Spectrum::ZERO {
         return Spectrum::ZERO;
     }
-    let geometry = &ctx.scene.geometry;
-    let occluded = if ls.delta || ls.distance.is_infinite() {
-        geometry.direction_occluded(ctx.hit.p, ctx.hit.ng, ls.w_in, ls.distance)
-    } else {
-        geometry.segment_occluded(ctx.hit.p, ctx.hit.ng, ls.point, ls.normal)
-    };
-    if occluded {
+    if ctx.occluded(&ls) {
         return Spectrum::ZERO;
     }
     let factor = if ls.delta {
@@ -143,6 +98,32 @@ fn light_sample(
         scale(p_light, p_bsdf)
     };
     f * ls.radiance * factor
+}
+
+/// One light sample resampled from `m` candidates (RIS, see [`super::ris`]): f·cos·Le·W
+/// in place of f·cos·Le/p, weighted against BSDF sampling with the source density p̃ that
+/// BSDF-sampled hits also ask for. `scale(p̃, p_bsdf)·p̃` is the MIS weight over the sample
+/// count (or the choice probability) for every heuristic.
+fn resampled_light_sample(
+    ctx: &Context<'_>,
+    src: &mut impl Uniform,
+    m: u32,
+    scale: impl Fn(f32, f32) -> f32,
+    delta_scale: f32,
+) -> Spectrum {
+    let Some(r) = super::ris::resample(ctx, src, m) else {
+        return Spectrum::ZERO;
+    };
+    if ctx.occluded(&r.ls) {
+        return Spectrum::ZERO;
+    }
+    let weight = if r.ls.delta {
+        delta_scale
+    } else {
+        let p_bsdf = ctx.material.pdf(r.w_in, ctx.w_out);
+        scale(r.p_source, p_bsdf) * r.p_source
+    };
+    r.f * r.ls.radiance * (r.weight * weight)
 }
 
 /// One BSDF sample: `scale(p_bsdf, p_light)` as in [`light_sample`]; `delta_scale`
@@ -171,7 +152,7 @@ fn bsdf_sample(
             let pdf = if s.delta {
                 0.0
             } else {
-                scene.lights[i].pdf(ctx.at, y.p, y.ng)
+                scene.lights[i].pdf(ctx.at, y.p, y.ng, ctx.lights)
             };
             (i, le, pdf)
         }
@@ -182,7 +163,7 @@ fn bsdf_sample(
                 (
                     i,
                     light.infinite_radiance(w_world),
-                    light.infinite_pdf(w_world),
+                    light.infinite_pdf(w_world, ctx.lights),
                 )
             }
             None => return Spectrum::ZERO,

@@ -5,18 +5,7 @@
 //! - balance heuristic: w_i = n_i p_i / Σ_k n_k p_k           (thesis eq. 9.6)
 //! - power heuristic:   w_i = (n_i p_i)^β / Σ_k (n_k p_k)^β, β = 2 (thesis eq. 9.12)
 
-named_enum! {
-    /// How the `mis` estimator combines light and BSDF sampling.
-    pub enum MisHeuristic: "MIS heuristic" {
-        /// Multi-sample model, balance heuristic.
-        Balance => "balance",
-        /// Multi-sample model, power heuristic with β = 2.
-        Power => "power",
-        /// One-sample model: pick light or BSDF sampling at random, weight by the balance
-        /// heuristic.
-        OneSample => "one-sample",
-    }
-}
+pub use crate::settings::MisHeuristic;
 
 /// Weight of a sample drawn by strategy `a` (effective density `na_pa` = n_a·p_a) against
 /// the other strategy's effective density `nb_pb` at the same direction. The weights of the

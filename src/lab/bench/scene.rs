@@ -56,7 +56,7 @@ pub fn scene_ray_figures(scene: &Scene, per_pixel: u32, runs: usize) -> Vec<Figu
             n: hit.frame.n,
         };
         let light = &scene.lights[(rng.next_u32() as usize) % scene.lights.len()];
-        if let Some(ls) = light.sample(&at, rng.next_2d()) {
+        if let Some(ls) = light.sample(&at, rng.next_2d(), Default::default()) {
             segments.push((
                 hit.p,
                 hit.ng,

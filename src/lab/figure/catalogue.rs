@@ -2,7 +2,7 @@
 
 use super::{Figure, FigureKind, Panel};
 
-const LIGHT_REF: &[&str] = &["--estimator mis", "--estimator light"];
+const LIGHT_REF: &str = "--estimator mis";
 
 /// Every figure, in lecture order.
 pub const FIGURES: &[Figure] = &[
@@ -50,10 +50,7 @@ pub const FIGURES: &[Figure] = &[
                 ),
             ],
             spp: 16,
-            reference: &[
-                "--estimator mis --light-sampling solid-angle",
-                "--estimator light --light-sampling solid-angle",
-            ],
+            reference: "--estimator mis --light-sampling solid-angle",
             reference_spp: 1024,
         }]),
     },
@@ -79,10 +76,7 @@ pub const FIGURES: &[Figure] = &[
                 ("bvh", "--estimator light --light-select bvh"),
             ],
             spp: 49,
-            reference: &[
-                "--estimator mis --light-select bvh",
-                "--estimator light --light-select bvh",
-            ],
+            reference: "--estimator mis --light-select bvh",
             reference_spp: 2048,
         }]),
     },
@@ -98,7 +92,7 @@ pub const FIGURES: &[Figure] = &[
                 ("MIS", "--estimator mis"),
             ],
             spp: 16,
-            reference: &["--estimator mis"],
+            reference: "--estimator mis",
             reference_spp: 1024,
         }]),
     },
@@ -115,7 +109,7 @@ pub const FIGURES: &[Figure] = &[
                 ("MIS", "--estimator mis"),
             ],
             spp: 16,
-            reference: &["--estimator mis"],
+            reference: "--estimator mis",
             reference_spp: 1024,
         }]),
     },
@@ -133,10 +127,7 @@ const fn shape_panel(title: &'static str, scene: &'static str) -> Panel {
             ),
         ],
         spp: 16,
-        reference: &[
-            "--estimator mis --light-sampling solid-angle",
-            "--estimator light --light-sampling solid-angle",
-        ],
+        reference: "--estimator mis --light-sampling solid-angle",
         reference_spp: 1024,
     }
 }

@@ -20,26 +20,7 @@ use super::{LightSample, ShadingPoint};
 use crate::geometry::Shape;
 use crate::math::{PI, Spectrum, spectrum::luminance};
 
-named_enum! {
-    /// How an area light draws its samples. Named as on the command line. A shape that
-    /// lacks the chosen strategy uses `area`; `best` resolves per shape
-    /// ([`LightSampling::resolve`]).
-    pub enum LightSampling: "light sampling" {
-        /// Uniform over the shape's area (lecture p₁ = 1/A), with horizon rejection before
-        /// the shadow ray.
-        Area => "area",
-        /// Spheres: uniform over the cap visible from the shading point (lecture p₂).
-        VisibleArea => "visible-area",
-        /// Uniform in the solid angle the shape subtends: cone (sphere, lecture p₃),
-        /// spherical rectangle (Ureña et al. 2013), spherical triangle (Arvo 1995),
-        /// spherical triangles of a polygon's triangulation.
-        SolidAngle => "solid-angle",
-        /// Spheres: ∝ cos θx·cos θy/d² (lecture p₄), i.e. ∝ cos θx in solid angle.
-        Geometric => "geometric",
-        /// The lowest-variance strategy of each shape (see [`LightSampling::resolve`]).
-        Best => "best",
-    }
-}
+pub use crate::settings::LightSampling;
 
 /// The kinds of emitting shape, for resolving a strategy name per shape.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -101,8 +82,6 @@ pub struct AreaLight {
     pub radiance: Spectrum,
     /// Emits from both sides (default: only the front, the side of the normal).
     pub two_sided: bool,
-    /// Sampling strategy as asked for; [`AreaLight::strategy`] is the one in use.
-    pub sampling: LightSampling,
 }
 
 /// A point drawn on a light: the point, its geometric normal and the density per
@@ -137,10 +116,10 @@ pub(crate) fn hit_plane(x: Vec3, w: Vec3, o: Vec3, n: Vec3) -> Option<Vec3> {
 }
 
 impl AreaLight {
-    /// The strategy in use: [`AreaLight::sampling`] resolved for this shape.
+    /// The strategy in use when `sampling` is asked for: resolved for this shape.
     #[inline]
-    pub fn strategy(&self) -> LightSampling {
-        self.sampling.resolve(EmitterKind::of(&self.shape))
+    pub fn strategy(&self, sampling: LightSampling) -> LightSampling {
+        sampling.resolve(EmitterKind::of(&self.shape))
     }
 
     /// Radiance leaving a point with normal `ny` in direction `w`.
@@ -159,13 +138,18 @@ impl AreaLight {
         sides * PI * luminance(self.radiance) * self.shape.area()
     }
 
-    /// Samples a point on the light with the strategy in use and returns it as a
-    /// direction from `at`. Checks the horizon at both ends (cos θ ≤ 0 at the shading
+    /// Samples a point on the light with strategy `sampling` (resolved for the shape) and
+    /// returns it as a direction from `at`. Checks the horizon at both ends (cos θ ≤ 0 at the shading
     /// point or at the light) before any shadow ray is traced: such samples carry no
     /// light. The returned pdf equals [`AreaLight::pdf`] at the sampled point.
     #[inline]
-    pub fn sample(&self, at: &ShadingPoint, u: Vec2) -> Option<LightSample> {
-        let strategy = self.strategy();
+    pub fn sample(
+        &self,
+        at: &ShadingPoint,
+        u: Vec2,
+        sampling: LightSampling,
+    ) -> Option<LightSample> {
+        let strategy = self.strategy(sampling);
         let point = match &self.shape {
             Shape::Sphere(s) => sphere::sample(s, strategy, at, u),
             Shape::Rectangle(r) => rectangle::sample(r, strategy, at, u),
@@ -176,10 +160,10 @@ impl AreaLight {
     }
 
     /// Density per steradian at `at` of choosing the direction towards `y` (a point on
-    /// this light with geometric normal `ny`) with the strategy in use.
+    /// this light with geometric normal `ny`) with strategy `sampling`.
     #[inline]
-    pub fn pdf(&self, at: &ShadingPoint, y: Vec3, ny: Vec3) -> f32 {
-        let strategy = self.strategy();
+    pub fn pdf(&self, at: &ShadingPoint, y: Vec3, ny: Vec3, sampling: LightSampling) -> f32 {
+        let strategy = self.strategy(sampling);
         match &self.shape {
             Shape::Sphere(s) => sphere::pdf(s, strategy, at, y, ny),
             Shape::Rectangle(r) => rectangle::pdf(r, strategy, at, y, ny),

@@ -60,8 +60,6 @@ pub struct Environment {
     integral: f32,
     /// Radius of a sphere bounding the scene, for Φ = π r² ∫ L dω.
     pub scene_radius: f32,
-    /// Sample (and report the pdf of) the MIS-compensated distribution.
-    compensation: bool,
 }
 
 /// Direction in the emitter's frame of image coordinates (u, v) ∈ [0, 1]², and sin θ.
@@ -199,7 +197,6 @@ impl Environment {
             to_local: Mat3::IDENTITY,
             integral: 4.0 * PI * luminance(l),
             scene_radius: 1.0,
-            compensation: false,
         }
     }
 
@@ -231,17 +228,7 @@ impl Environment {
             to_local: rotation.transpose(),
             integral: integral * scale,
             scene_radius: 1.0,
-            compensation: false,
         })
-    }
-
-    /// An environment map from a lat-long image file (`.exr`, `.hdr`, `.pfm`, `.png`).
-    pub fn from_file(path: &std::path::Path, scale: f32, to_world: Mat3) -> Result<Self, String> {
-        let img = crate::image::io::read_image(path).map_err(|e| e.to_string())?;
-        let image = LatLongImage::new(img.width as usize, img.height as usize, img.rgb)
-            .map_err(|e| format!("{}: {e}", path.display()))?;
-        Environment::from_image(image, scale, to_world)
-            .map_err(|e| format!("{}: {e}", path.display()))
     }
 
     /// Radiance arriving from world direction `w` (unit, pointing away from the scene).
@@ -256,15 +243,17 @@ impl Environment {
     }
 
     /// Draws a world direction; returns it with its radiance and solid-angle density.
+    /// `compensate` samples the MIS-compensated distribution where the map has one (see
+    /// [`Environment::has_compensation`]).
     #[inline]
-    pub fn sample(&self, u: Vec2) -> Option<(Vec3, Spectrum, f32)> {
+    pub fn sample(&self, u: Vec2, compensate: bool) -> Option<(Vec3, Spectrum, f32)> {
         match &self.radiance {
             Radiance::Constant(l) => {
                 let (w, pdf) = square_to_uniform_sphere(u);
                 Some((w, *l * self.scale, pdf))
             }
             Radiance::Map { image, .. } => {
-                let (cell, pdf_uv) = self.distribution()?.sample(u);
+                let (cell, pdf_uv) = self.distribution(compensate)?.sample(u);
                 let x = cell.x + image.half_texel();
                 let uv = Vec2::new(x - x.floor(), cell.y);
                 let (local, sin_t) = uv_to_direction(uv);
@@ -275,7 +264,7 @@ impl Environment {
                 // sampled uv), so a BSDF-sampled ray that finds this direction gets
                 // bit-identical values for its MIS weight.
                 let w = (self.to_world * local).normalize();
-                let pdf = self.pdf(w);
+                let pdf = self.pdf(w, compensate);
                 (pdf > 0.0).then(|| (w, self.eval(w), pdf))
             }
         }
@@ -283,11 +272,11 @@ impl Environment {
 
     /// Solid-angle density of [`Environment::sample`] choosing world direction `w`.
     #[inline]
-    pub fn pdf(&self, w: Vec3) -> f32 {
+    pub fn pdf(&self, w: Vec3, compensate: bool) -> f32 {
         match &self.radiance {
             Radiance::Constant(_) => uniform_sphere_pdf(w),
             Radiance::Map { image, .. } => {
-                let Some(distribution) = self.distribution() else {
+                let Some(distribution) = self.distribution(compensate) else {
                     return 0.0;
                 };
                 let local = self.to_local * w;
@@ -304,31 +293,25 @@ impl Environment {
         }
     }
 
-    /// Turns MIS compensation on or off (Karlík, Šik, Vévoda, Skřivan & Křivánek 2019,
-    /// "MIS Compensation: Optimizing Sampling Techniques in Multiple Importance
-    /// Sampling"): sample ∝ max(0, L − L̄) instead of ∝ L, where L̄ is the mean radiance
-    /// over the sphere. Directions dimmer than the mean then get density zero, so this is
-    /// only unbiased inside MIS, whose BSDF strategy covers them. A map with no texel
-    /// above its mean (a constant) keeps its plain distribution.
-    pub fn set_compensation(&mut self, on: bool) {
-        self.compensation = on;
+    /// Whether the map has an MIS-compensated distribution (Karlík, Šik, Vévoda, Skřivan &
+    /// Křivánek 2019, "MIS Compensation: Optimizing Sampling Techniques in Multiple
+    /// Importance Sampling"): ∝ max(0, L − L̄) instead of ∝ L, where L̄ is the mean radiance
+    /// over the sphere. Directions dimmer than the mean get density zero under it, so it is
+    /// only unbiased inside MIS, whose BSDF strategy covers them. A map with no texel above
+    /// its mean (a constant) has none and keeps its plain distribution.
+    pub fn has_compensation(&self) -> bool {
+        matches!(
+            &self.radiance,
+            Radiance::Map {
+                compensated: Some(_),
+                ..
+            }
+        )
     }
 
-    /// Whether MIS compensation is on (and the map has a compensated distribution).
-    pub fn compensated(&self) -> bool {
-        self.compensation
-            && matches!(
-                &self.radiance,
-                Radiance::Map {
-                    compensated: Some(_),
-                    ..
-                }
-            )
-    }
-
-    /// The distribution in use.
+    /// The distribution in use: the compensated one when asked for and present.
     #[inline]
-    fn distribution(&self) -> Option<&PiecewiseConstant2D> {
+    fn distribution(&self, compensate: bool) -> Option<&PiecewiseConstant2D> {
         match &self.radiance {
             Radiance::Constant(_) => None,
             Radiance::Map {
@@ -336,7 +319,7 @@ impl Environment {
                 compensated,
                 ..
             } => Some(match compensated {
-                Some(c) if self.compensation => c,
+                Some(c) if compensate => c,
                 _ => distribution,
             }),
         }

@@ -8,11 +8,15 @@
 //! MIS can weight BSDF-sampled hits with it.
 
 mod adaptive;
+mod bounds;
 mod bvh;
+pub mod cone;
+mod estimate;
 mod power;
 mod uniform;
 
 pub use adaptive::{ADAPTIVE_FLOOR, AdaptiveSelector};
+pub use bounds::LightBounds;
 pub use bvh::BvhSelector;
 pub use power::PowerSelector;
 pub use uniform::UniformSelector;
@@ -38,20 +42,7 @@ pub trait LightSelector {
     fn pmf(&self, at: &ShadingPoint, index: usize) -> f32;
 }
 
-named_enum! {
-    /// Light selection strategy, by CLI name.
-    pub enum LightSelect: "light selection" {
-        /// i = ⌊ξ·n⌋ (lecture solution #1).
-        Uniform => "uniform",
-        /// ∝ emitted power Φ, by an alias table (lecture solution #2).
-        Power => "power",
-        /// ∝ a per-point contribution estimate with a floor, O(n) (lecture solution #3).
-        Adaptive => "adaptive",
-        /// A light BVH with importance from distance and orientation bounds, O(log n)
-        /// (Conty Estevez & Kulla 2018).
-        Bvh => "bvh",
-    }
-}
+pub use crate::settings::LightSelect;
 
 /// The scene's selector (closed set, one `match`).
 #[derive(Clone, Debug)]
@@ -68,7 +59,13 @@ pub enum Selector {
 
 impl Selector {
     /// Builds the selector `kind` over the scene's `lights` (indices into that slice).
+    /// With one light every strategy chooses it with probability 1 (where the bounds say
+    /// it cannot contribute, its sample is zero anyway), so no per-point selection work
+    /// is done: uniform choice.
     pub fn new(kind: LightSelect, lights: &[Light]) -> Selector {
+        if lights.len() == 1 {
+            return Selector::Uniform(UniformSelector::new(1));
+        }
         match kind {
             LightSelect::Uniform => Selector::Uniform(UniformSelector::new(lights.len())),
             LightSelect::Power => {
@@ -76,7 +73,8 @@ impl Selector {
                 Selector::Power(PowerSelector::new(&powers))
             }
             LightSelect::Adaptive => Selector::Adaptive(AdaptiveSelector::new(lights)),
-            LightSelect::Bvh => Selector::Bvh(BvhSelector::new(lights)),
+            // Resampling draws its candidates from the light BVH (see `integrator::ris`).
+            LightSelect::Bvh | LightSelect::Ris => Selector::Bvh(BvhSelector::new(lights)),
         }
     }
 }
@@ -110,7 +108,7 @@ mod tests {
     use super::*;
     use crate::geometry::Shape;
     use crate::geometry::shape::Sphere;
-    use crate::light::{AreaLight, LightSampling};
+    use crate::light::AreaLight;
     use crate::math::Spectrum;
 
     fn sphere(x: f32, radiance: f32) -> Light {
@@ -121,7 +119,6 @@ mod tests {
             }),
             radiance: Spectrum::splat(radiance),
             two_sided: false,
-            sampling: LightSampling::Area,
         })
     }
 

@@ -2,11 +2,11 @@
 //! diffuse sphere and three Phong spheres of exponent 10, 100 and 1000, lit only by one
 //! small rectangular area light (1/20 of the floor's side).
 
+use super::stage;
 use glam::Vec3;
 
-use crate::bsdf::{Diffuse, Material, Phong};
+use crate::bsdf::{Material, Phong};
 use crate::math::Spectrum;
-use crate::render::camera::Camera;
 use crate::scene::builder::Emission;
 use crate::scene::{Scene, SceneBuilder, SceneError};
 
@@ -20,15 +20,9 @@ pub const LIGHT_RADIANCE: f32 = 120.0;
 /// Builds the scene.
 pub fn build() -> Result<Scene, SceneError> {
     let mut b = SceneBuilder::new("builtin:assignment");
-    let grey = b.material(Material::Diffuse(Diffuse {
-        reflectance: Spectrum::splat(0.6),
-    }));
-    let wall = b.material(Material::Diffuse(Diffuse {
-        reflectance: Spectrum::new(0.55, 0.55, 0.6),
-    }));
-    let matte = b.material(Material::Diffuse(Diffuse {
-        reflectance: Spectrum::new(0.7, 0.35, 0.25),
-    }));
+    let grey = stage::diffuse(&mut b, Spectrum::splat(0.6));
+    let wall = stage::diffuse(&mut b, Spectrum::new(0.55, 0.55, 0.6));
+    let matte = stage::diffuse(&mut b, Spectrum::new(0.7, 0.35, 0.25));
     let phong = |n: f32| {
         Material::Phong(Phong {
             kd: Spectrum::new(0.1, 0.15, 0.35),
@@ -41,26 +35,12 @@ pub fn build() -> Result<Scene, SceneError> {
         b.material(phong(100.0)),
         b.material(phong(1000.0)),
     ];
-    let light_mat = b.material(Material::Diffuse(Diffuse {
-        reflectance: Spectrum::ZERO,
-    }));
+    let light_mat = stage::diffuse(&mut b, Spectrum::ZERO);
 
     let h = 0.5 * FLOOR_SIDE;
     // Floor y = 0, front side up; back wall z = −h, front side towards +z.
-    b.rectangle(
-        Vec3::new(-h, 0.0, h),
-        Vec3::new(2.0 * h, 0.0, 0.0),
-        Vec3::new(0.0, 0.0, -2.0 * h),
-        grey,
-        None,
-    );
-    b.rectangle(
-        Vec3::new(-h, 0.0, -h),
-        Vec3::new(2.0 * h, 0.0, 0.0),
-        Vec3::new(0.0, 2.0 * h, 0.0),
-        wall,
-        None,
-    );
+    stage::floor(&mut b, h, grey);
+    stage::back_wall(&mut b, h, wall);
 
     let r = 0.45;
     b.sphere(Vec3::new(-1.65, r, 0.0), r, matte, None);
@@ -78,13 +58,6 @@ pub fn build() -> Result<Scene, SceneError> {
         Some(Emission::new(Spectrum::splat(LIGHT_RADIANCE))),
     );
 
-    let camera = Camera::look_at(
-        Vec3::new(0.0, 1.6, 5.2),
-        Vec3::new(0.0, 0.55, 0.0),
-        Vec3::Y,
-        45.0,
-        384,
-        256,
-    );
+    let camera = stage::camera(Vec3::new(0.0, 1.6, 5.2), Vec3::new(0.0, 0.55, 0.0), 45.0);
     b.build(camera, 16)
 }

@@ -2,24 +2,20 @@
 //! very bright sun (1.5° radius) over a dim gradient — so it needs no files. Uniform and
 //! cosine sampling rarely find the sun; sampling the map by its luminance does.
 
+use super::stage;
 use glam::{Mat3, Vec3};
 
-use crate::bsdf::{Diffuse, Material, Phong};
+use crate::bsdf::{Material, Phong};
 use crate::light::Environment;
 use crate::light::environment::{SkyParameters, procedural_sky};
 use crate::math::Spectrum;
-use crate::render::camera::Camera;
 use crate::scene::{Scene, SceneBuilder, SceneError};
 
 /// Builds the scene.
 pub fn build() -> Result<Scene, SceneError> {
     let mut b = SceneBuilder::new("builtin:envmap");
-    let floor = b.material(Material::Diffuse(Diffuse {
-        reflectance: Spectrum::new(0.5, 0.48, 0.45),
-    }));
-    let matte = b.material(Material::Diffuse(Diffuse {
-        reflectance: Spectrum::splat(0.75),
-    }));
+    let floor = stage::diffuse(&mut b, Spectrum::new(0.5, 0.48, 0.45));
+    let matte = stage::diffuse(&mut b, Spectrum::splat(0.75));
     let phong = |n: f32| {
         Material::Phong(Phong {
             kd: Spectrum::new(0.35, 0.12, 0.08),
@@ -30,13 +26,7 @@ pub fn build() -> Result<Scene, SceneError> {
     let glossy = [b.material(phong(20.0)), b.material(phong(300.0))];
 
     let h = 4.0;
-    b.rectangle(
-        Vec3::new(-h, 0.0, h),
-        Vec3::new(2.0 * h, 0.0, 0.0),
-        Vec3::new(0.0, 0.0, -2.0 * h),
-        floor,
-        None,
-    );
+    stage::floor(&mut b, h, floor);
     let r = 0.5;
     b.sphere(Vec3::new(-1.15, r, 0.0), r, matte, None);
     b.sphere(Vec3::new(0.0, r, -0.3), r, glossy[0], None);
@@ -47,13 +37,6 @@ pub fn build() -> Result<Scene, SceneError> {
         .map_err(|e| SceneError::new("builtin:envmap", None, e))?;
     b.environment(env);
 
-    let camera = Camera::look_at(
-        Vec3::new(0.0, 1.4, 4.6),
-        Vec3::new(0.0, 0.45, 0.0),
-        Vec3::Y,
-        45.0,
-        384,
-        256,
-    );
+    let camera = stage::camera(Vec3::new(0.0, 1.4, 4.6), Vec3::new(0.0, 0.45, 0.0), 45.0);
     b.build(camera, 16)
 }

@@ -3,14 +3,14 @@
 //! red smooth plastic — on a grey floor before a wall, lit by one rectangular area light.
 //! The smooth BSDFs' Dirac lobes show only with the `bsdf` estimator (and later `mis`).
 
+use super::stage;
 use glam::Vec3;
 
 use crate::bsdf::{
-    Conductor, ConductorMaterial, Diffuse, Material, MicrofacetType, Plastic, PlasticParams,
-    RoughConductor, RoughPlastic,
+    Conductor, ConductorMaterial, Material, MicrofacetType, Plastic, PlasticParams, RoughConductor,
+    RoughPlastic,
 };
 use crate::math::Spectrum;
-use crate::render::camera::Camera;
 use crate::scene::builder::Emission;
 use crate::scene::{Scene, SceneBuilder, SceneError};
 
@@ -18,9 +18,7 @@ use crate::scene::{Scene, SceneBuilder, SceneError};
 pub fn build() -> Result<Scene, SceneError> {
     let mut b = SceneBuilder::new("builtin:materials");
     let invalid = |e: String| SceneError::new("builtin:materials", None, e);
-    let grey = b.material(Material::Diffuse(Diffuse {
-        reflectance: Spectrum::splat(0.5),
-    }));
+    let grey = stage::diffuse(&mut b, Spectrum::splat(0.5));
     let plastic = |diffuse: Spectrum, alpha: f32| PlasticParams {
         diffuse_reflectance: diffuse,
         distribution: MicrofacetType::Ggx,
@@ -46,25 +44,11 @@ pub fn build() -> Result<Scene, SceneError> {
             Plastic::new(plastic(Spectrum::new(0.6, 0.1, 0.1), 0.0)).map_err(invalid)?,
         ),
     ];
-    let light_mat = b.material(Material::Diffuse(Diffuse {
-        reflectance: Spectrum::ZERO,
-    }));
+    let light_mat = stage::diffuse(&mut b, Spectrum::ZERO);
 
     let h = 3.0;
-    b.rectangle(
-        Vec3::new(-h, 0.0, h),
-        Vec3::new(2.0 * h, 0.0, 0.0),
-        Vec3::new(0.0, 0.0, -2.0 * h),
-        grey,
-        None,
-    );
-    b.rectangle(
-        Vec3::new(-h, 0.0, -h),
-        Vec3::new(2.0 * h, 0.0, 0.0),
-        Vec3::new(0.0, 2.0 * h, 0.0),
-        grey,
-        None,
-    );
+    stage::floor(&mut b, h, grey);
+    stage::back_wall(&mut b, h, grey);
     let r = 0.4;
     for (i, m) in spheres.into_iter().enumerate() {
         let id = b.material(m);
@@ -78,13 +62,6 @@ pub fn build() -> Result<Scene, SceneError> {
         light_mat,
         Some(Emission::new(Spectrum::splat(6.0))),
     );
-    let camera = Camera::look_at(
-        Vec3::new(0.0, 1.4, 5.0),
-        Vec3::new(0.0, 0.45, 0.0),
-        Vec3::Y,
-        45.0,
-        384,
-        256,
-    );
+    let camera = stage::camera(Vec3::new(0.0, 1.4, 5.0), Vec3::new(0.0, 0.45, 0.0), 45.0);
     b.build(camera, 16)
 }

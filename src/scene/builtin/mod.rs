@@ -5,6 +5,7 @@ mod envmap;
 mod materials;
 pub mod shirley100;
 pub mod sphere_near_plane;
+mod stage;
 mod veach_mis;
 
 use super::{Scene, SceneError};

@@ -9,11 +9,11 @@
 //! `many-lights?n=N` is the same generator with N luminaires over an area grown with N
 //! (same density), for scaling tests.
 
+use super::stage;
 use glam::Vec3;
 
-use crate::bsdf::{Diffuse, Material, Phong};
+use crate::bsdf::{Material, Phong};
 use crate::math::Spectrum;
-use crate::render::camera::Camera;
 use crate::sampling::Rng32;
 use crate::scene::builder::Emission;
 use crate::scene::{Scene, SceneBuilder, SceneError};
@@ -56,29 +56,18 @@ fn build_with(name: &str, n: usize) -> Result<Scene, SceneError> {
     let scale = (n as f32 / LUMINAIRES as f32).sqrt().max(1.0);
     let half = HALF_SIDE * scale;
     add_floor_and_objects(&mut b, half + 4.0);
-    let black = b.material(Material::Diffuse(Diffuse {
-        reflectance: Spectrum::ZERO,
-    }));
+    let black = stage::diffuse(&mut b, Spectrum::ZERO);
     let mut rng = Rng32::new(0x5_1996);
     for i in 0..n {
         add_luminaire(&mut b, &mut rng, i, half, black);
     }
-    let camera = Camera::look_at(
-        Vec3::new(0.0, 4.2, 10.5),
-        Vec3::new(0.0, 0.6, -1.5),
-        Vec3::Y,
-        55.0,
-        384,
-        256,
-    );
+    let camera = stage::camera(Vec3::new(0.0, 4.2, 10.5), Vec3::new(0.0, 0.6, -1.5), 55.0);
     b.build(camera, 49)
 }
 
 /// A floor of half-side `half`, two boxes and four spheres (diffuse and Phong).
 fn add_floor_and_objects(b: &mut SceneBuilder, half: f32) {
-    let floor = b.material(Material::Diffuse(Diffuse {
-        reflectance: Spectrum::new(0.5, 0.5, 0.48),
-    }));
+    let floor = stage::diffuse(b, Spectrum::new(0.5, 0.5, 0.48));
     b.rectangle(
         Vec3::new(-half, 0.0, half),
         Vec3::new(2.0 * half, 0.0, 0.0),
@@ -86,12 +75,8 @@ fn add_floor_and_objects(b: &mut SceneBuilder, half: f32) {
         floor,
         None,
     );
-    let clay = b.material(Material::Diffuse(Diffuse {
-        reflectance: Spectrum::new(0.7, 0.4, 0.3),
-    }));
-    let stone = b.material(Material::Diffuse(Diffuse {
-        reflectance: Spectrum::new(0.45, 0.55, 0.6),
-    }));
+    let clay = stage::diffuse(b, Spectrum::new(0.7, 0.4, 0.3));
+    let stone = stage::diffuse(b, Spectrum::new(0.45, 0.55, 0.6));
     add_box(b, BOXES[0].0, BOXES[0].1, stone);
     add_box(b, BOXES[1].0, BOXES[1].1, clay);
     let glossy = |kd: Spectrum, exponent: f32| {

@@ -6,12 +6,11 @@
 //! [`build_with`] builds the same floor with any subset of the emitters (and a concave
 //! polygon emitter), so the lab can measure one emitter shape at a time.
 
+use super::stage;
 use glam::Vec3;
 
-use crate::bsdf::{Diffuse, Material};
 use crate::geometry::Mesh;
 use crate::math::Spectrum;
-use crate::render::camera::Camera;
 use crate::scene::builder::Emission;
 use crate::scene::{Scene, SceneBuilder, SceneError};
 
@@ -48,20 +47,10 @@ pub fn build() -> Result<Scene, SceneError> {
 /// The floor and camera with the given emitters.
 pub fn build_with(emitters: &[NearPlaneEmitter]) -> Result<Scene, SceneError> {
     let mut b = SceneBuilder::new("builtin:sphere-near-plane");
-    let floor = b.material(Material::Diffuse(Diffuse {
-        reflectance: Spectrum::splat(0.7),
-    }));
-    let dark = b.material(Material::Diffuse(Diffuse {
-        reflectance: Spectrum::ZERO,
-    }));
+    let floor = stage::diffuse(&mut b, Spectrum::splat(0.7));
+    let dark = stage::diffuse(&mut b, Spectrum::ZERO);
     let h = 4.0;
-    b.rectangle(
-        Vec3::new(-h, 0.0, h),
-        Vec3::new(2.0 * h, 0.0, 0.0),
-        Vec3::new(0.0, 0.0, -2.0 * h),
-        floor,
-        None,
-    );
+    stage::floor(&mut b, h, floor);
     let emit = |r: f32, g: f32, bl: f32| Some(Emission::new(Spectrum::new(r, g, bl)));
     for &e in emitters {
         match e {
@@ -107,14 +96,7 @@ pub fn build_with(emitters: &[NearPlaneEmitter]) -> Result<Scene, SceneError> {
             }
         }
     }
-    let camera = Camera::look_at(
-        Vec3::new(0.0, 4.2, 3.4),
-        Vec3::new(0.0, 0.1, -0.4),
-        Vec3::Y,
-        45.0,
-        384,
-        256,
-    );
+    let camera = stage::camera(Vec3::new(0.0, 4.2, 3.4), Vec3::new(0.0, 0.1, -0.4), 45.0);
     b.build(camera, 16)
 }
 

@@ -5,11 +5,11 @@
 //! Light sampling wins on the rough plates and large lights, BSDF sampling on the smooth
 //! plates and small lights; MIS is good everywhere.
 
+use super::stage;
 use glam::Vec3;
 
-use crate::bsdf::{Diffuse, Material, Phong};
+use crate::bsdf::{Material, Phong};
 use crate::math::Spectrum;
-use crate::render::camera::Camera;
 use crate::scene::builder::Emission;
 use crate::scene::{Scene, SceneBuilder, SceneError};
 
@@ -26,12 +26,8 @@ const LIGHT_ROW_Y: f32 = 0.8;
 /// Builds the scene.
 pub fn build() -> Result<Scene, SceneError> {
     let mut b = SceneBuilder::new("builtin:veach-mis");
-    let backdrop = b.material(Material::Diffuse(Diffuse {
-        reflectance: Spectrum::splat(0.25),
-    }));
-    let black = b.material(Material::Diffuse(Diffuse {
-        reflectance: Spectrum::ZERO,
-    }));
+    let backdrop = stage::diffuse(&mut b, Spectrum::splat(0.25));
+    let black = stage::diffuse(&mut b, Spectrum::ZERO);
 
     // Backdrop: a floor far below and a wall behind the lights.
     b.rectangle(
@@ -93,6 +89,6 @@ pub fn build() -> Result<Scene, SceneError> {
         Some(Emission::new(Spectrum::splat(400.0))),
     );
 
-    let camera = Camera::look_at(CAMERA, Vec3::new(0.0, -1.6, 2.5), Vec3::Y, 46.0, 384, 256);
+    let camera = stage::camera(CAMERA, Vec3::new(0.0, -1.6, 2.5), 46.0);
     b.build(camera, 16)
 }

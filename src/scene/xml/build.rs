@@ -18,7 +18,8 @@ use crate::bsdf::{Diffuse, Material, Phong};
 use crate::light::Environment;
 use crate::math::Spectrum;
 use crate::scene::texture::{MaterialTexture, Texture};
-use crate::scene::{Requested, Scene, SceneBuilder};
+use crate::scene::{Scene, SceneBuilder};
+use crate::settings::RenderPatch;
 
 /// BSDF types this loader knows.
 const BSDFS: [&str; 7] = [
@@ -269,11 +270,14 @@ pub fn build(
         return Err(root.error("the scene has no <sensor>"));
     };
     let mut scene = ctx.builder.build(sensor.camera, sensor.spp)?;
-    scene.requested = Requested {
-        filter: sensor.filter,
+    scene.filter = sensor.filter;
+    scene.requested = RenderPatch {
         sampler: Some(sensor.sampler),
         seed: Some(sensor.seed),
-        mis,
+        mis: mis.map(|m| m.heuristic),
+        light_samples: mis.map(|m| m.light_samples),
+        bsdf_samples: mis.map(|m| m.bsdf_samples),
+        ..RenderPatch::default()
     };
     Ok(scene)
 }
@@ -310,7 +314,7 @@ fn build_emitter<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
                 }
                 let scale = p.float("scale", 1.0)?;
                 let to_world = Mat3::from_mat4(p.transform("to_world")?);
-                Environment::from_file(&el.dir.join(&file), scale, to_world)
+                crate::scene::environment_from_file(&el.dir.join(&file), scale, to_world)
                     .map_err(|e| p.error_at("filename", e))?
             };
             ctx.builder.environment(env);

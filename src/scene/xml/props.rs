@@ -423,7 +423,7 @@ pub fn parse_transform(t: &Element) -> Result<Mat4, XmlError> {
                         c.error("lookat: origin equals target, or up is parallel to the view")
                     );
                 }
-                Mat4::from(crate::render::camera::look_at_transform(origin, target, up))
+                Mat4::from(crate::scene::camera::look_at_transform(origin, target, up))
             }
             other => {
                 return Err(c.error(format!(

@@ -9,12 +9,9 @@ use super::build::Context;
 use super::props::Props;
 use super::tree::Element;
 use crate::image::Filter;
-use crate::integrator::{MisHeuristic, MisSettings};
-use crate::render::camera::Camera;
-use crate::sampling::SamplerKind;
-
-/// Largest film accepted (8192²): the film keeps ~40 bytes per pixel.
-const MAX_PIXELS: u64 = 1 << 26;
+use crate::scene::Camera;
+use crate::settings::MAX_PIXELS;
+use crate::settings::{MisHeuristic, MisSettings, SamplerKind};
 
 /// `hdrfilm`'s format properties and their values in Mitsuba 3 (hdrfilm.cpp), the
 /// default first.

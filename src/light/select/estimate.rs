@@ -6,13 +6,13 @@
 //! The estimate is deterministic in the shading point, so a selector's `pmf` can
 //! recompute it. It may be zero for a light that still contributes (a quad whose centre
 //! is below the horizon but whose edge is above); the adaptive selector mixes it with
-//! the conservative [`LightBounds::importance`](super::LightBounds::importance) so no
+//! the conservative [`LightBounds::importance`](super::bounds::LightBounds::importance) so no
 //! such light gets probability zero.
 
 use glam::Vec3;
 
-use super::{Light, ShadingPoint};
 use crate::geometry::Shape;
+use crate::light::{Light, ShadingPoint};
 use crate::math::{PI, spectrum::luminance};
 
 impl Light {
@@ -87,7 +87,7 @@ impl Light {
 mod tests {
     use super::*;
     use crate::geometry::shape::{Rectangle, Sphere};
-    use crate::light::{AreaLight, LightSampling};
+    use crate::light::AreaLight;
     use crate::math::Spectrum;
 
     fn area(shape: Shape) -> Light {
@@ -95,7 +95,6 @@ mod tests {
             shape,
             radiance: Spectrum::splat(2.0),
             two_sided: false,
-            sampling: LightSampling::Area,
         })
     }
 

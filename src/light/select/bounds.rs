@@ -8,8 +8,8 @@
 use glam::Vec3;
 
 use super::cone::{DirectionCone, bound_subtended_directions, cos_sub_clamped, sin_sub_clamped};
-use super::{Light, ShadingPoint};
 use crate::geometry::{Aabb, Shape};
+use crate::light::{Light, ShadingPoint};
 use crate::math::{PI, safe_sqrt, spectrum::luminance};
 
 /// Spatial, emission and orientation bounds of a light or a cluster of lights.
@@ -201,7 +201,7 @@ impl Light {
 mod tests {
     use super::*;
     use crate::geometry::shape::{Rectangle, Sphere};
-    use crate::light::{AreaLight, LightSampling, PointLight};
+    use crate::light::{AreaLight, PointLight};
     use crate::math::Spectrum;
 
     fn at(p: Vec3, n: Vec3) -> ShadingPoint {
@@ -213,7 +213,6 @@ mod tests {
             shape: Shape::Sphere(Sphere { center, radius }),
             radiance: Spectrum::ONE,
             two_sided: false,
-            sampling: LightSampling::Area,
         })
     }
 
@@ -252,7 +251,6 @@ mod tests {
             shape: Shape::Rectangle(quad),
             radiance: Spectrum::ONE,
             two_sided: false,
-            sampling: LightSampling::Area,
         });
         assert!(quad.bounds().w.x < 0.0);
         assert!(quad.bounds().importance(&p) > 0.0);
@@ -278,7 +276,6 @@ mod tests {
             shape: Shape::Rectangle(quad),
             radiance: Spectrum::ONE,
             two_sided: false,
-            sampling: LightSampling::Area,
         });
         assert!(quad.bounds().w.y > 0.0);
         assert_eq!(quad.bounds().importance(&p), 0.0);
