@@ -8,6 +8,7 @@ use clap::Args;
 use super::CliError;
 use crate::image::io::{read_image, write_rgb8_png};
 use crate::image::metrics::{compare, false_color};
+use crate::image::output::check_output;
 
 /// Arguments of `diff`.
 #[derive(Args, Debug)]
@@ -25,15 +26,12 @@ pub struct DiffArgs {
 /// Runs `diff`: prints one `name: value` line per metric.
 pub fn run(args: &DiffArgs) -> Result<(), CliError> {
     // Refused before any work: write_rgb8_png would put PNG bytes under any name.
-    if let Some(path) = &args.false_color
-        && !path
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("png"))
-    {
-        return Err(CliError::input(format!(
-            "--false-color {}: the false-colour map is written as PNG; give a .png path",
-            path.display()
-        )));
+    if let Some(path) = &args.false_color {
+        check_output(path, &["png"]).map_err(|e| {
+            CliError::input(format!(
+                "--false-color {e}; the false-colour map is written as PNG: give a .png path"
+            ))
+        })?;
     }
     let img = read_image(&args.image).map_err(CliError::input)?;
     let reference = read_image(&args.reference).map_err(CliError::input)?;

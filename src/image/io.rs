@@ -1,5 +1,5 @@
 //! Image files. Output goes to a temporary file in the same folder and is renamed into
-//! place, so a file is written whole or not at all.
+//! place, so a file is written whole or not at all (`output.rs`).
 //!
 //! EXR files hold float RGB, the variance of each pixel's mean as channels
 //! `variance.R/G/B`, and the samples per pixel as the header attribute `spp`.
@@ -84,27 +84,12 @@ fn extension(path: &Path) -> String {
         .to_ascii_lowercase()
 }
 
-/// Writes through a temporary sibling file renamed into place.
+/// Writes through a temporary sibling file renamed into place (see [`super::output`]).
 fn write_atomically(
     path: &Path,
     write: impl FnOnce(&Path) -> Result<(), String>,
 ) -> Result<(), ImageError> {
-    let file_name = path
-        .file_name()
-        .ok_or_else(|| image_error(path, "not a file path"))?;
-    let tmp = path.with_file_name(format!(
-        ".{}.tmp-{}",
-        file_name.to_string_lossy(),
-        std::process::id()
-    ));
-    if let Err(e) = write(&tmp) {
-        let _ = fs::remove_file(&tmp);
-        return Err(image_error(path, e));
-    }
-    fs::rename(&tmp, path).map_err(|e| {
-        let _ = fs::remove_file(&tmp);
-        image_error(path, e)
-    })
+    super::output::write_atomically(path, write).map_err(|e| image_error(path, e))
 }
 
 /// sRGB transfer function (IEC 61966-2-1) of a linear value in [0, 1].

@@ -7,6 +7,7 @@ pub mod filter;
 pub mod io;
 pub mod limits;
 pub mod metrics;
+pub mod output;
 
 pub use film::{Film, PixelStats};
 pub use filter::Filter;
