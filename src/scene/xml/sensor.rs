@@ -206,8 +206,22 @@ pub fn build_integrator<'a>(
             }
             let light_samples = p.count("emitter_samples", shading, 1024)?;
             let bsdf_samples = p.count("bsdf_samples", shading, 1024)?;
-            if light_samples + bsdf_samples == 0 {
-                return Err(el.error("need at least one emitter or BSDF sample"));
+            // Mitsuba 3 takes 0 as "skip this strategy"; lightlab's MIS estimator takes at
+            // least one sample of each (the render settings refuse 0).
+            for (name, n) in [
+                ("shading_samples", shading),
+                ("emitter_samples", light_samples),
+                ("bsdf_samples", bsdf_samples),
+            ] {
+                if n == 0 {
+                    return Err(p.error_at(
+                        name,
+                        format!(
+                            "{name} 0 is not supported: lightlab's MIS takes at least one \
+                             sample of each strategy (--estimator light or bsdf uses one alone)"
+                        ),
+                    ));
+                }
             }
             MisSettings {
                 heuristic: MisHeuristic::Power,
