@@ -20,7 +20,7 @@ use crate::lab::budget::{Budget, render_budget};
 use crate::lab::experiment::{
     ReferenceImage, ReferenceSource, load_scene, obtain_reference, resolve,
 };
-use crate::lab::insets::{Inset, pick_insets, write_insets};
+use crate::lab::insets::{Inset, check_insets, pick_insets, write_insets};
 use crate::lab::report::{
     Gallery, Report, Table, ViewerImage, command_line, write_report, write_text, write_viewer_image,
 };
@@ -94,6 +94,8 @@ pub fn run_compare(
     let settings = resolve(&scene, &config.strategies, &config.base, &extra)?;
     let camera = settings[0].camera(&scene);
     let size = (camera.width, camera.height);
+    // Before any rendering or writing: a bad inset must not leave a half-written report.
+    check_insets(&config.insets, size.0, size.1)?;
     log(&format!(
         "reference for {} ({}x{})",
         config.scene, size.0, size.1
