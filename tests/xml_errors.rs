@@ -5,7 +5,7 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::PathBuf;
 
 use lightlab::scene::SceneError;
-use lightlab::scene::xml::{self, Loaded};
+use lightlab::scene::xml::{self, LoadOptions, Loaded};
 
 fn load(text: &str) -> Result<Loaded, SceneError> {
     xml::load_str(text, &[])
@@ -38,7 +38,7 @@ fn errors_name_line_column_and_element() {
         ),
         (
             scene(r#"<shape type="obj"><string name="filename" value="missing.obj"/></shape>"#),
-            (4, 1),
+            (4, 19),
             &["missing.obj"],
         ),
         (
@@ -63,7 +63,7 @@ fn errors_name_line_column_and_element() {
         ),
         (
             scene(r#"<integrator type="path"><integer name="max_depth" value="5"/></integrator>"#),
-            (4, 1),
+            (4, 25),
             &["max_depth 5"],
         ),
         (
@@ -107,14 +107,23 @@ fn defaults_defines_and_warnings() {
         "<scene version=\"3.0.0\"><default name=\"r\" value=\"2\"/><default name=\"rr\" value=\"9\"/>\n{SENSOR}\n\
          <shape type=\"sphere\"><float name=\"radius\" value=\"$rr\"/><float name=\"bogus\" value=\"1\"/></shape></scene>"
     );
-    let loaded = load(&text).unwrap();
+    // An unused property is an error, as in Mitsuba 3, and a warning when lenient.
+    let e = load(&text).unwrap_err();
+    assert!(e.to_string().contains("bogus"), "{e}");
+    assert_eq!(e.location.map(|l| l.0), Some(4));
+    let path = std::env::temp_dir().join(format!("lightlab-lenient-{}.xml", std::process::id()));
+    std::fs::write(&path, &text).unwrap();
+    let lenient = LoadOptions { lenient: true };
+    let loaded = xml::load_with_options(&path, &[], lenient).unwrap();
     // `$rr` is substituted before `$r` (longest first).
     let bounds = loaded.scene.geometry.bounds();
     assert!((bounds.max.x - 9.0).abs() < 1e-3, "{bounds:?}");
     assert_eq!(loaded.warnings.len(), 1, "{:?}", loaded.warnings);
     assert!(loaded.warnings[0].contains("bogus") && loaded.warnings[0].contains(":4:"));
-    let defined = xml::load_str(&text, &[("rr".into(), "0.5".into())]).unwrap();
+    let defines = [("rr".into(), "0.5".into())];
+    let defined = xml::load_with_options(&path, &defines, lenient).unwrap();
     assert!((defined.scene.geometry.bounds().max.x - 0.5).abs() < 1e-3);
+    let _ = std::fs::remove_file(&path);
 }
 
 #[test]

@@ -8,7 +8,10 @@ use clap::Args;
 
 use super::CliError;
 use crate::integrator::EstimatorKind;
-use crate::lab::bench::{Figure, TABLE_HEADER, estimator_figures, mesh_figures, scene_ray_figures};
+use crate::lab::bench::{
+    Figure, MAX_BENCH_RAYS, MAX_BENCH_TRIANGLES, TABLE_HEADER, estimator_figures, mesh_figures,
+    scene_ray_figures,
+};
 use crate::render::RenderSettings;
 use crate::scene;
 
@@ -46,6 +49,17 @@ pub struct BenchArgs {
 pub fn run(args: &BenchArgs) -> Result<(), CliError> {
     if args.runs == 0 || args.spp == 0 {
         return Err(CliError::input("--runs and --spp must be at least 1"));
+    }
+    // Caps before allocating: the mesh and the rays are generated in memory.
+    for (flag, value, max) in [
+        ("--triangles", args.triangles, MAX_BENCH_TRIANGLES),
+        ("--rays", args.rays, MAX_BENCH_RAYS),
+    ] {
+        if value > max {
+            return Err(CliError::input(format!(
+                "{flag} {value} is out of range (at most {max})"
+            )));
+        }
     }
     let pool = super::args::thread_pool(args.threads)?;
     let scenes = args

@@ -25,10 +25,10 @@ pub struct CompareArgs {
     #[arg(long, required = true)]
     pub strategies: String,
     /// Equal samples per pixel.
-    #[arg(long, conflicts_with = "time")]
+    #[arg(long, conflicts_with = "time", allow_negative_numbers = true)]
     pub spp: Option<u32>,
     /// Equal wall-clock time per strategy, in seconds.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub time: Option<f64>,
     /// Reference image (EXR from `lightlab reference`); default: render one with the
     /// renderer's default strategy (`lightlab render` without strategy flags) at
@@ -36,7 +36,7 @@ pub struct CompareArgs {
     #[arg(long)]
     pub reference: Option<PathBuf>,
     /// Samples per pixel of a rendered reference.
-    #[arg(long, default_value_t = 1024)]
+    #[arg(long, default_value_t = 1024, allow_negative_numbers = true)]
     pub reference_spp: u32,
     /// Inset rectangle `x,y,w,h` (repeatable); default: two high-error regions.
     #[arg(long)]

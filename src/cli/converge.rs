@@ -20,7 +20,7 @@ pub struct ConvergeArgs {
     #[arg(long, required = true)]
     pub strategies: String,
     /// Largest samples per pixel (points at 1, 2, 4, ... up to it).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub max_spp: u32,
     /// Seeds per point (each point averages them; bars show their spread).
     #[arg(long, default_value_t = 4)]
@@ -42,6 +42,13 @@ pub struct ConvergeArgs {
 /// Runs `converge`.
 pub fn run(args: &ConvergeArgs) -> Result<(), CliError> {
     let strategies = Strategy::parse_list(&args.strategies).map_err(CliError::input)?;
+    // Checked here: the default --reference-spp derives from it and would take the blame.
+    if args.max_spp == 0 || args.seeds == 0 {
+        return Err(CliError::input(format!(
+            "--max-spp {} --seeds {}: both must be at least 1",
+            args.max_spp, args.seeds
+        )));
+    }
     let ref_spp = args
         .reference_spp
         .unwrap_or(args.max_spp.saturating_mul(16));

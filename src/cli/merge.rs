@@ -7,6 +7,7 @@ use clap::Args;
 
 use super::CliError;
 use crate::image::io::write_film_with_metadata;
+use crate::image::output::check_output;
 use crate::lab::merge::merge_files;
 
 /// Arguments of `merge`.
@@ -22,15 +23,12 @@ pub struct MergeArgs {
 
 /// Runs `merge`.
 pub fn run(args: &MergeArgs) -> Result<(), CliError> {
-    if !args
-        .output
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("exr"))
-    {
-        return Err(CliError::input(
-            "merge writes .exr (variance and spp are kept)",
-        ));
-    }
+    // Checked before reading the parts: merge writes .exr (variance and spp are kept).
+    check_output(&args.output, &["exr"]).map_err(|e| {
+        CliError::input(format!(
+            "-o {e}; merge writes .exr (variance and spp are kept)"
+        ))
+    })?;
     let film = merge_files(&args.parts).map_err(CliError::input)?;
     let parts: Vec<String> = args.parts.iter().map(|p| p.display().to_string()).collect();
     let metadata = vec![("lightlab.merged_from".to_string(), parts.join(" "))];

@@ -41,6 +41,14 @@ impl CliError {
             code: 1,
         }
     }
+    /// Stopped by Ctrl-C after writing what was done (exit code 130 = 128 + SIGINT, as
+    /// shells report a process that SIGINT ended).
+    pub fn interrupted(message: impl ToString) -> CliError {
+        CliError {
+            message: message.to_string(),
+            code: 130,
+        }
+    }
 }
 
 #[derive(Parser, Debug)]

@@ -11,6 +11,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use super::render::{STOP, install_stop_handler};
 use super::{CliError, StrategyArgs};
 use crate::image::io::write_film_with_metadata;
+use crate::image::output::check_output;
 use crate::lab::reference::{ReferenceTarget, render_reference};
 use crate::lab::report::{VERSION, command_line};
 use crate::scene;
@@ -27,10 +28,10 @@ pub struct ReferenceArgs {
     pub strategy: StrategyArgs,
     /// Stop when the relative standard error of the image mean and of 90% of the pixels
     /// is below this (e.g. 0.01).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub rel_error: Option<f64>,
     /// Time budget in seconds.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub time: Option<f64>,
     /// Worker threads (default: all cores).
     #[arg(long)]
@@ -47,15 +48,11 @@ pub fn run(args: &ReferenceArgs) -> Result<(), CliError> {
             "reference renders whole images; --pass does not apply",
         ));
     }
-    if !args
-        .output
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("exr"))
-    {
-        return Err(CliError::input(
-            "the reference must be an .exr file (it keeps variance and metadata)",
-        ));
-    }
+    check_output(&args.output, &["exr"]).map_err(|e| {
+        CliError::input(format!(
+            "-o {e}; the reference must be an .exr file (it keeps variance and metadata)"
+        ))
+    })?;
     let target = ReferenceTarget {
         rel_error: args.rel_error,
         max_spp: args.strategy.0.spp,
@@ -98,7 +95,8 @@ pub fn run(args: &ReferenceArgs) -> Result<(), CliError> {
         spp: out.spp,
         ..settings.clone()
     };
-    let metadata: Vec<(String, String)> = [
+    let partial = format!("stopped by Ctrl-C at {} spp", out.spp);
+    let mut metadata: Vec<(String, String)> = [
         ("lightlab.version", VERSION.to_string()),
         ("lightlab.command", command_line()),
         ("lightlab.scene", scene.name.clone()),
@@ -119,6 +117,9 @@ pub fn run(args: &ReferenceArgs) -> Result<(), CliError> {
     .into_iter()
     .map(|(k, v)| (k.to_string(), v))
     .collect();
+    if out.stopped {
+        metadata.push(("lightlab.partial".into(), partial.clone()));
+    }
     write_film_with_metadata(&out.film, &args.output, 0.0, &metadata).map_err(CliError::failure)?;
     eprintln!(
         "{}: {} spp in {} passes, {:.2} s; relative error {:.2e} (image mean), {:.2e} (90% of pixels){} -> {}",
@@ -130,10 +131,17 @@ pub fn run(args: &ReferenceArgs) -> Result<(), CliError> {
         r.error.pixel_rel_error,
         match (args.rel_error, r.converged) {
             (Some(_), true) => ", target met",
+            (Some(_), false) if out.stopped => ", target NOT met (stopped by Ctrl-C)",
             (Some(_), false) => ", target NOT met (budget ran out)",
             _ => "",
         },
         args.output.display()
     );
+    if out.stopped {
+        return Err(CliError::interrupted(format!(
+            "{partial}: {} holds the partial reference",
+            args.output.display()
+        )));
+    }
     Ok(())
 }

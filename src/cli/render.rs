@@ -7,7 +7,8 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 
 use super::{CliError, StrategyArgs};
-use crate::image::io::write_film;
+use crate::image::io::write_film_with_metadata;
+use crate::image::output::check_output;
 use crate::render::{Control, render};
 use crate::scene::{self, builtin::DEFAULT_SCENE};
 
@@ -59,6 +60,15 @@ pub fn progress_bar(total: u64) -> ProgressBar {
 
 /// Runs `render`.
 pub fn run(args: &RenderArgs) -> Result<(), CliError> {
+    // Refused before the render, not after it.
+    check_output(&args.output, &["exr", "png", "pfm"])
+        .map_err(|e| CliError::input(format!("-o {}", e)))?;
+    if !args.exposure.is_finite() {
+        return Err(CliError::input(format!(
+            "--exposure {}: must be a finite number of stops",
+            args.exposure
+        )));
+    }
     let spec = args.scene.as_deref().unwrap_or(DEFAULT_SCENE);
     let scene = scene::load_with(spec, &args.define).map_err(CliError::input)?;
     let settings = args.strategy.settings(&scene)?;
@@ -79,7 +89,15 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
         )
     });
     bar.finish_and_clear();
-    write_film(&out.film, &args.output, args.exposure).map_err(CliError::failure)?;
+    // An interrupted render still writes its whole rounds, and says so in an EXR header.
+    let partial = format!("stopped by Ctrl-C at {} of {} spp", out.spp, last - first);
+    let metadata: Vec<(String, String)> = out
+        .stopped
+        .then(|| ("lightlab.partial".to_string(), partial.clone()))
+        .into_iter()
+        .collect();
+    write_film_with_metadata(&out.film, &args.output, args.exposure, &metadata)
+        .map_err(CliError::failure)?;
     let samples = out.spp as f64 * (camera.width * camera.height) as f64;
     eprintln!(
         "{}: {}x{} at {} spp{} in {:.2} s ({:.2} Msamples/s), {} -> {}",
@@ -104,11 +122,10 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
         );
     }
     if out.stopped {
-        eprintln!(
-            "stopped early: the image holds {} of {} spp",
-            out.spp,
-            last - first
-        );
+        return Err(CliError::interrupted(format!(
+            "{partial}: {} holds the partial image",
+            args.output.display()
+        )));
     }
     Ok(())
 }

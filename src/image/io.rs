@@ -1,5 +1,5 @@
 //! Image files. Output goes to a temporary file in the same folder and is renamed into
-//! place, so a file is written whole or not at all.
+//! place, so a file is written whole or not at all (`output.rs`).
 //!
 //! EXR files hold float RGB, the variance of each pixel's mean as channels
 //! `variance.R/G/B`, and the samples per pixel as the header attribute `spp`.
@@ -14,6 +14,7 @@ use exr::prelude::{
 };
 
 use super::film::{Film, PixelStats};
+use super::limits::{MAX_IMAGE_PIXELS, check_exr, open_image};
 use crate::math::Spectrum;
 
 /// An error reading or writing an image, naming the file.
@@ -83,27 +84,12 @@ fn extension(path: &Path) -> String {
         .to_ascii_lowercase()
 }
 
-/// Writes through a temporary sibling file renamed into place.
+/// Writes through a temporary sibling file renamed into place (see [`super::output`]).
 fn write_atomically(
     path: &Path,
     write: impl FnOnce(&Path) -> Result<(), String>,
 ) -> Result<(), ImageError> {
-    let file_name = path
-        .file_name()
-        .ok_or_else(|| image_error(path, "not a file path"))?;
-    let tmp = path.with_file_name(format!(
-        ".{}.tmp-{}",
-        file_name.to_string_lossy(),
-        std::process::id()
-    ));
-    if let Err(e) = write(&tmp) {
-        let _ = fs::remove_file(&tmp);
-        return Err(image_error(path, e));
-    }
-    fs::rename(&tmp, path).map_err(|e| {
-        let _ = fs::remove_file(&tmp);
-        image_error(path, e)
-    })
+    super::output::write_atomically(path, write).map_err(|e| image_error(path, e))
 }
 
 /// sRGB transfer function (IEC 61966-2-1) of a linear value in [0, 1].
@@ -240,11 +226,7 @@ pub fn read_image(path: &Path) -> Result<LoadedImage, ImageError> {
 
 /// Radiance RGBE (`.hdr`), linear.
 fn read_hdr(path: &Path) -> Result<LoadedImage, ImageError> {
-    let img = image::ImageReader::open(path)
-        .map_err(|e| image_error(path, e))?
-        .with_guessed_format()
-        .map_err(|e| image_error(path, e))?
-        .decode()
+    let img = open_image(path)
         .map_err(|e| image_error(path, e))?
         .into_rgb32f();
     let (w, h) = img.dimensions();
@@ -263,6 +245,7 @@ fn read_hdr(path: &Path) -> Result<LoadedImage, ImageError> {
 }
 
 fn read_exr(path: &Path) -> Result<LoadedImage, ImageError> {
+    check_exr(path).map_err(|e| image_error(path, e))?;
     let image = read()
         .no_deep_data()
         .largest_resolution_level()
@@ -291,6 +274,18 @@ fn read_exr(path: &Path) -> Result<LoadedImage, ImageError> {
     let (Some(r), Some(g), Some(b)) = (find("R"), find("G"), find("B")) else {
         return Err(image_error(path, "EXR has no R, G and B channels"));
     };
+    // Subsampled channels (x/y sampling > 1) hold fewer values than pixels.
+    if layer
+        .channel_data
+        .list
+        .iter()
+        .any(|c| c.sample_data.len() != w * h)
+    {
+        return Err(image_error(
+            path,
+            "EXR has subsampled channels (not supported)",
+        ));
+    }
     let variance = match (find("variance.R"), find("variance.G"), find("variance.B")) {
         (Some(r), Some(g), Some(b)) => Some(zip3(r, g, b)),
         _ => None,
@@ -321,7 +316,7 @@ fn read_exr(path: &Path) -> Result<LoadedImage, ImageError> {
 }
 
 fn read_png(path: &Path) -> Result<LoadedImage, ImageError> {
-    let img = image::open(path)
+    let img = open_image(path)
         .map_err(|e| image_error(path, e))?
         .to_rgb8();
     let rgb = img
@@ -366,10 +361,15 @@ fn read_pfm(path: &Path) -> Result<LoadedImage, ImageError> {
     let w: u32 = tokens[1].parse().map_err(|_| bad("bad PFM width"))?;
     let h: u32 = tokens[2].parse().map_err(|_| bad("bad PFM height"))?;
     let scale: f32 = tokens[3].parse().map_err(|_| bad("bad PFM scale"))?;
-    let n = (w as usize) * (h as usize) * channels;
-    let data = bytes
-        .get(pos..pos + 4 * n)
-        .ok_or_else(|| bad("PFM data is shorter than its header says"))?;
+    // Checked against the file's bytes before anything is allocated.
+    let pixels = w as u64 * h as u64;
+    let n = (pixels * channels as u64) as usize;
+    let data = (pixels > 0 && pixels <= MAX_IMAGE_PIXELS)
+        .then(|| bytes.get(pos..pos + 4 * n))
+        .flatten()
+        .ok_or_else(|| {
+            bad("PFM size is out of range or its data is shorter than its header says")
+        })?;
     let value = |i: usize| {
         let b = [
             data[4 * i],
@@ -383,7 +383,7 @@ fn read_pfm(path: &Path) -> Result<LoadedImage, ImageError> {
             f32::from_be_bytes(b)
         }
     };
-    let mut rgb = vec![Spectrum::ZERO; (w * h) as usize];
+    let mut rgb = vec![Spectrum::ZERO; pixels as usize];
     for y in 0..h as usize {
         for x in 0..w as usize {
             let i = ((h as usize - 1 - y) * w as usize + x) * channels;

@@ -13,8 +13,8 @@ pub struct ErrorReport {
     pub mse: f64,
     /// Mean of (v − r)²/(r² + 0.01) over pixels and channels.
     pub rel_mse: f64,
-    /// (Σv − Σr)/Σr over pixels and channels.
-    pub relative_bias: f64,
+    /// (Σv − Σr)/Σr over pixels and channels; None (undefined) when Σr = 0.
+    pub relative_bias: Option<f64>,
     /// Standard error of `relative_bias`, from the image's per-pixel variance (and the
     /// reference's, when it has one).
     pub bias_std_error: Option<f64>,
@@ -27,9 +27,15 @@ pub struct ErrorReport {
 impl ErrorReport {
     /// The bias in standard errors (None without variance).
     pub fn bias_z(&self) -> Option<f64> {
-        self.bias_std_error
-            .filter(|s| *s > 0.0)
-            .map(|s| self.relative_bias / s)
+        let se = self.bias_std_error.filter(|s| *s > 0.0)?;
+        Some(self.relative_bias? / se)
+    }
+
+    /// The relative bias in percent (`+1.23%`), or `undefined` against an all-zero
+    /// reference.
+    pub fn relative_bias_percent(&self) -> String {
+        self.relative_bias
+            .map_or("undefined".into(), |b| format!("{:+.2}%", 100.0 * b))
     }
 }
 
@@ -77,11 +83,7 @@ pub fn compare(
     ErrorReport {
         mse: se / n,
         rel_mse: rel / n,
-        relative_bias: if sum_r != 0.0 {
-            (sum_v - sum_r) / sum_r
-        } else {
-            0.0
-        },
+        relative_bias: (sum_r != 0.0).then(|| (sum_v - sum_r) / sum_r),
         bias_std_error: (has_var && sum_r != 0.0).then(|| var.sqrt() / sum_r.abs()),
         nan_pixels: nan,
         inf_pixels: inf,
@@ -137,12 +139,17 @@ mod tests {
         let e = compare(&v, None, &r, None);
         assert!((e.mse - (1.0 + 0.01) / 2.0).abs() < 1e-6);
         assert!((e.rel_mse - (1.0 / 1.01 + 0.01 / 0.01) / 2.0).abs() < 1e-5);
-        assert!((e.relative_bias - (6.3 - 3.0) / 3.0).abs() < 1e-5);
+        assert!((e.relative_bias.unwrap() - (6.3 - 3.0) / 3.0).abs() < 1e-5);
         let same = compare(&r, None, &r, None);
         assert_eq!(
             (same.mse, same.rel_mse, same.relative_bias),
-            (0.0, 0.0, 0.0)
+            (0.0, 0.0, Some(0.0))
         );
+        // Against an all-zero reference the relative bias is undefined, not 0.
+        let zero = [Spectrum::ZERO; 2];
+        let undefined = compare(&v, None, &zero, None);
+        assert_eq!(undefined.relative_bias, None);
+        assert_eq!(undefined.relative_bias_percent(), "undefined");
         let nan = compare(
             &[Spectrum::splat(f32::NAN), Spectrum::splat(f32::INFINITY)],
             None,

@@ -1,10 +1,13 @@
 //! Images: the film that accumulates samples (count, mean, running variance), file
-//! input/output (EXR with variance, PNG, PFM), and error metrics against a reference.
+//! input/output (EXR with variance, PNG, PFM) with size limits on input, and error
+//! metrics against a reference.
 
 pub mod film;
 pub mod filter;
 pub mod io;
+pub mod limits;
 pub mod metrics;
+pub mod output;
 
 pub use film::{Film, PixelStats};
 pub use filter::Filter;

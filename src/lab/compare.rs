@@ -20,7 +20,7 @@ use crate::lab::budget::{Budget, render_budget};
 use crate::lab::experiment::{
     ReferenceImage, ReferenceSource, load_scene, obtain_reference, resolve,
 };
-use crate::lab::insets::{Inset, pick_insets, write_insets};
+use crate::lab::insets::{Inset, check_insets, pick_insets, write_insets};
 use crate::lab::report::{
     Gallery, Report, Table, ViewerImage, command_line, write_report, write_text, write_viewer_image,
 };
@@ -94,6 +94,8 @@ pub fn run_compare(
     let settings = resolve(&scene, &config.strategies, &config.base, &extra)?;
     let camera = settings[0].camera(&scene);
     let size = (camera.width, camera.height);
+    // Before any rendering or writing: a bad inset must not leave a half-written report.
+    check_insets(&config.insets, size.0, size.1)?;
     log(&format!(
         "reference for {} ({}x{})",
         config.scene, size.0, size.1
@@ -216,9 +218,9 @@ fn write_outputs(
     notes.push(reference.description.clone());
     for r in results.iter().filter(|r| looks_biased(&r.error)) {
         notes.push(format!(
-            "warning: \"{}\" differs from the reference by {:+.2}% = {:+.1} standard errors: biased (or the reference is)",
+            "warning: \"{}\" differs from the reference by {} = {:+.1} standard errors: biased (or the reference is)",
             r.label,
-            100.0 * r.error.relative_bias,
+            r.error.relative_bias_percent(),
             r.error.bias_z().unwrap_or(0.0)
         ));
     }
@@ -318,8 +320,8 @@ pub fn results_table(results: &[StrategyResult]) -> Table {
                     format!("{:.4e}", r.error.rel_mse),
                     match r.error.bias_z() {
                         Some(z) => format!(
-                            "{:+.2}% ({:+.1}){}",
-                            100.0 * r.error.relative_bias,
+                            "{} ({:+.1}){}",
+                            r.error.relative_bias_percent(),
                             z,
                             if looks_biased(&r.error) {
                                 " biased"
@@ -327,7 +329,7 @@ pub fn results_table(results: &[StrategyResult]) -> Table {
                                 ""
                             }
                         ),
-                        None => format!("{:+.2}%", 100.0 * r.error.relative_bias),
+                        None => r.error.relative_bias_percent(),
                     },
                     format_efficiency(r.relative_efficiency),
                 ]

@@ -107,6 +107,19 @@ pub fn pick_insets(
     picked
 }
 
+/// Refuses insets that do not lie inside a `w`×`h` image (sums in u64: no overflow).
+pub fn check_insets(insets: &[Inset], w: u32, h: u32) -> Result<(), LabError> {
+    for r in insets {
+        if r.x as u64 + r.w as u64 > w as u64 || r.y as u64 + r.h as u64 > h as u64 {
+            return Err(LabError::Input(format!(
+                "--inset {},{},{},{} lies outside the {w}x{h} image",
+                r.x, r.y, r.w, r.h
+            )));
+        }
+    }
+    Ok(())
+}
+
 /// Writes `img/inset{k}-{slug}.png` for the reference and every image, and returns
 /// their gallery (rows: reference then strategies; columns: insets).
 pub fn write_insets(
@@ -117,15 +130,8 @@ pub fn write_insets(
     slugs: &[String],
     strategies: &[Strategy],
 ) -> Result<Gallery, LabError> {
-    let (w, h) = (reference.width, reference.height);
-    for r in insets {
-        if r.x + r.w > w || r.y + r.h > h {
-            return Err(LabError::Input(format!(
-                "inset {},{},{},{} lies outside the {w}x{h} image",
-                r.x, r.y, r.w, r.h
-            )));
-        }
-    }
+    let w = reference.width;
+    check_insets(insets, w, reference.height)?;
     let mut rows = Vec::new();
     let sources = std::iter::once((
         "reference".to_string(),

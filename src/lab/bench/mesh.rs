@@ -7,6 +7,12 @@ use super::{Figure, median_rate};
 use crate::geometry::TriangleSet;
 use crate::geometry::bvh::bench_mesh::{bench_mesh, bench_rays};
 
+/// Most triangles of the benchmark mesh: ~100 bytes each with its BVH, so 2 GB.
+pub const MAX_BENCH_TRIANGLES: usize = 20_000_000;
+
+/// Most rays of each kind (~50 bytes each).
+pub const MAX_BENCH_RAYS: usize = 1 << 26;
+
 /// Build time, closest-hit and any-hit throughput on a mesh of about `triangles`
 /// triangles with `rays` rays of each kind, each the median of `runs` runs.
 pub fn mesh_figures(triangles: usize, rays: usize, runs: usize) -> Vec<Figure> {

@@ -6,7 +6,7 @@
 mod mesh;
 mod scene;
 
-pub use mesh::mesh_figures;
+pub use mesh::{MAX_BENCH_RAYS, MAX_BENCH_TRIANGLES, mesh_figures};
 pub use scene::{estimator_figures, scene_ray_figures};
 
 use std::time::Instant;

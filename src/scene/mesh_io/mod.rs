@@ -13,6 +13,10 @@ pub use serialized::load_serialized;
 
 use crate::geometry::Mesh;
 
+/// Largest magnitude of a number read from a scene or mesh file: squared distances and
+/// areas of larger coordinates overflow f32 (3.4·10³⁸) in the renderer.
+pub const MAX_MAGNITUDE: f32 = 1e9;
+
 /// Checks a mesh read from `path`: at least one triangle, indices in range, finite
 /// attributes, attribute arrays empty or one per vertex.
 pub fn validate(mesh: &Mesh, path: &str) -> Result<(), String> {
@@ -25,8 +29,15 @@ pub fn validate(mesh: &Mesh, path: &str) -> Result<(), String> {
             "{path}: vertex index {bad} out of range ({n} vertices)"
         ));
     }
-    if !mesh.positions.iter().all(|p| p.is_finite()) {
-        return Err(format!("{path}: vertex positions are not all finite"));
+    if !mesh
+        .positions
+        .iter()
+        // `is_finite` first: `max_element` skips NaN.
+        .all(|p| p.is_finite() && p.abs().max_element() <= MAX_MAGNITUDE)
+    {
+        return Err(format!(
+            "{path}: vertex positions are not all finite and within ±{MAX_MAGNITUDE:e}"
+        ));
     }
     for (what, len, finite) in [
         (

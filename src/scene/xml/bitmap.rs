@@ -4,17 +4,19 @@
 use glam::{Affine2, Mat2, Vec2};
 
 use super::XmlError;
+use super::build::Context;
 use super::props::Props;
 use super::tree::Element;
 use crate::image::io::{read_image, srgb_to_linear};
+use crate::image::limits::open_image;
 use crate::math::Spectrum;
 use crate::scene::texture::{Texture, Wrap};
 
 /// Largest texture side accepted.
 const MAX_SIDE: u32 = 16384;
 
-/// Builds a bitmap texture; `warnings` receives unused properties.
-pub fn load_bitmap(el: &Element, warnings: &mut Vec<String>) -> Result<Texture, XmlError> {
+/// Builds a bitmap texture.
+pub fn load_bitmap(el: &Element, ctx: &mut Context<'_>) -> Result<Texture, XmlError> {
     let ty = el.required("type")?;
     if ty != "bitmap" {
         return Err(el.error(format!("texture \"{ty}\" is not supported (known: bitmap)")));
@@ -30,9 +32,10 @@ pub fn load_bitmap(el: &Element, warnings: &mut Vec<String>) -> Result<Texture, 
         "bilinear" => true,
         "nearest" => false,
         other => {
-            return Err(el.error(format!(
-                "unknown filter_type \"{other}\" (known: bilinear, nearest)"
-            )));
+            return Err(p.error_at(
+                "filter_type",
+                format!("unknown filter_type \"{other}\" (known: bilinear, nearest)"),
+            ));
         }
     };
     let wrap = match p.string("wrap_mode", "repeat")?.as_str() {
@@ -40,9 +43,10 @@ pub fn load_bitmap(el: &Element, warnings: &mut Vec<String>) -> Result<Texture, 
         "mirror" => Wrap::Mirror,
         "clamp" => Wrap::Clamp,
         other => {
-            return Err(el.error(format!(
-                "unknown wrap_mode \"{other}\" (known: repeat, mirror, clamp)"
-            )));
+            return Err(p.error_at(
+                "wrap_mode",
+                format!("unknown wrap_mode \"{other}\" (known: repeat, mirror, clamp)"),
+            ));
         }
     };
     let m = p.transform("to_uv")?;
@@ -60,12 +64,17 @@ pub fn load_bitmap(el: &Element, warnings: &mut Vec<String>) -> Result<Texture, 
         .to_ascii_lowercase();
     let (width, height, texels) = match ext.as_str() {
         "exr" | "pfm" => {
-            let img = read_image(&path).map_err(|e| el.error(e))?;
+            let img = read_image(&path).map_err(|e| p.error_at("filename", e))?;
             (img.width, img.height, img.rgb)
         }
         "png" | "jpg" | "jpeg" => {
-            let img = image::open(&path)
-                .map_err(|e| el.error(format!("cannot read texture \"{}\": {e}", path.display())))?
+            let img = open_image(&path)
+                .map_err(|e| {
+                    p.error_at(
+                        "filename",
+                        format!("cannot read texture \"{}\": {e}", path.display()),
+                    )
+                })?
                 .to_rgb8();
             let decode = |v: u8| {
                 let x = v as f32 / 255.0;
@@ -93,7 +102,7 @@ pub fn load_bitmap(el: &Element, warnings: &mut Vec<String>) -> Result<Texture, 
             path.display()
         )));
     }
-    p.unused(warnings);
+    ctx.finish(&p)?;
     Ok(Texture {
         width,
         height,

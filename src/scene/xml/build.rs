@@ -7,13 +7,13 @@ use std::path::Path;
 
 use glam::{Mat3, Vec3};
 
-use super::XmlError;
 use super::bitmap::load_bitmap;
 use super::microfacet;
 use super::props::Props;
 use super::sensor::{build_integrator, build_sensor};
 use super::shapes;
 use super::tree::Element;
+use super::{LoadOptions, XmlError};
 use crate::bsdf::{Diffuse, Material, Phong};
 use crate::light::Environment;
 use crate::math::Spectrum;
@@ -32,12 +32,18 @@ const BSDFS: [&str; 7] = [
     "roughplastic",
 ];
 
+/// Nesting limit of `twosided` BSDFs (through refs or not).
+const MAX_BSDF_NESTING: usize = 16;
+
 /// The loader's state while building one scene.
 pub struct Context<'a> {
     ids: HashMap<&'a str, &'a Element>,
     materials: HashMap<*const Element, u32>,
     default_material: Option<u32>,
     has_environment: bool,
+    /// The BSDFs being built, outermost first: a `<ref>` to one of them is a cycle.
+    building: Vec<&'a Element>,
+    options: LoadOptions,
     /// The scene under construction.
     pub builder: SceneBuilder,
     /// Located warnings.
@@ -45,21 +51,37 @@ pub struct Context<'a> {
 }
 
 impl<'a> Context<'a> {
-    /// The element `el` stands for: itself, or the target of a `<ref id>`.
-    pub fn resolve(&self, el: &'a Element) -> Result<&'a Element, XmlError> {
-        if el.tag != "ref" {
-            return Ok(el);
+    /// The element `el` stands for (itself, or the target of a `<ref id>`), which must
+    /// be one of `tags`; a target of another kind is reported at the `<ref>`.
+    pub fn resolve(&self, el: &'a Element, tags: &[&str]) -> Result<&'a Element, XmlError> {
+        let target = if el.tag == "ref" {
+            let id = el.required("id")?;
+            self.ids
+                .get(id)
+                .copied()
+                .ok_or_else(|| el.error(format!("no element has id \"{id}\"")))?
+        } else {
+            el
+        };
+        if tags.contains(&target.tag.as_str()) {
+            return Ok(target);
         }
-        let id = el.required("id")?;
-        self.ids
-            .get(id)
-            .copied()
-            .ok_or_else(|| el.error(format!("no element has id \"{id}\"")))
+        let expected = tags.join(" or ");
+        Err(if el.tag == "ref" {
+            el.error(format!(
+                "refers to {} (line {}, column {}), but a <{expected}> is expected here",
+                target.describe(),
+                target.loc.line,
+                target.loc.col
+            ))
+        } else {
+            el.error(format!("a <{expected}> is expected here"))
+        })
     }
 
-    /// Reports the unused properties of `p`.
-    pub fn finish(&mut self, p: &Props<'_>) {
-        p.unused(self.warnings);
+    /// Refuses the unused and duplicated properties of `p` (warnings when lenient).
+    pub fn finish(&mut self, p: &Props<'_>) -> Result<(), XmlError> {
+        p.check(self.options.lenient, self.warnings)
     }
 
     /// The material index of a `<bsdf>` (built once per element).
@@ -101,11 +123,8 @@ impl<'a> Context<'a> {
     ) -> Result<(Spectrum, Option<Texture>), XmlError> {
         match p.texture(name) {
             Some(t) => {
-                let t = self.resolve(t)?;
-                if t.tag != "texture" {
-                    return Err(t.error(format!("\"{name}\" must be a texture or a colour")));
-                }
-                Ok((Spectrum::ONE, Some(load_bitmap(t, self.warnings)?)))
+                let t = self.resolve(t, &["texture"])?;
+                Ok((Spectrum::ONE, Some(load_bitmap(t, self)?)))
             }
             None => Ok((p.spectrum(name, default)?, None)),
         }
@@ -126,7 +145,7 @@ impl<'a> Context<'a> {
             "phong" => {
                 let exponent = p.float("exponent", 30.0)?;
                 if exponent < 0.0 {
-                    return Err(el.error(format!("exponent must be ≥ 0, not {exponent}")));
+                    return Err(p.error_at("exponent", format!("must be ≥ 0, not {exponent}")));
                 }
                 let (kd, texture) =
                     self.reflectance(&p, "diffuse_reflectance", Spectrum::splat(0.5))?;
@@ -141,14 +160,26 @@ impl<'a> Context<'a> {
                 )
             }
             "twosided" => {
-                let inner: Vec<&Element> = p
-                    .nested()
-                    .into_iter()
-                    .map(|c| self.resolve(c))
+                let nested = p.nested();
+                let inner: Vec<&Element> = nested
+                    .iter()
+                    .map(|c| self.resolve(c, &["bsdf"]))
                     .collect::<Result<_, _>>()?;
                 match inner.as_slice() {
-                    [b] if b.tag == "bsdf" => {
-                        let (m, _, t) = self.bsdf(b)?;
+                    [b] => {
+                        // A BSDF that (through refs) contains itself would recurse forever.
+                        if self.building.iter().any(|x| std::ptr::eq(*x, *b)) {
+                            let msg = format!("reference cycle: {} contains itself", b.describe());
+                            return Err(nested[0].error(msg));
+                        }
+                        if self.building.len() >= MAX_BSDF_NESTING {
+                            let msg = format!("BSDFs nested deeper than {MAX_BSDF_NESTING}");
+                            return Err(nested[0].error(msg));
+                        }
+                        self.building.push(el);
+                        let built = self.bsdf(b);
+                        self.building.pop();
+                        let (m, _, t) = built?;
                         (m, true, t)
                     }
                     [_, _] => {
@@ -174,7 +205,7 @@ impl<'a> Context<'a> {
                 )));
             }
         };
-        self.finish(&p);
+        self.finish(&p)?;
         Ok(result)
     }
 }
@@ -194,7 +225,12 @@ fn index_ids<'a>(el: &'a Element, ids: &mut HashMap<&'a str, &'a Element>) -> Re
 }
 
 /// Builds the scene from the `<scene>` root.
-pub fn build(root: &Element, path: &Path, warnings: &mut Vec<String>) -> Result<Scene, XmlError> {
+pub fn build(
+    root: &Element,
+    path: &Path,
+    options: LoadOptions,
+    warnings: &mut Vec<String>,
+) -> Result<Scene, XmlError> {
     let mut ids = HashMap::new();
     index_ids(root, &mut ids)?;
     let mut ctx = Context {
@@ -202,6 +238,8 @@ pub fn build(root: &Element, path: &Path, warnings: &mut Vec<String>) -> Result<
         materials: HashMap::new(),
         default_material: None,
         has_environment: false,
+        building: Vec::new(),
+        options,
         builder: SceneBuilder::new(path.display().to_string()),
         warnings,
     };
@@ -259,7 +297,7 @@ fn build_emitter<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
                 to_world.transform_point3(Vec3::ZERO)
             };
             ctx.builder.point_light(position, intensity);
-            ctx.finish(&p);
+            ctx.finish(&p)?;
             Ok(())
         }
         "constant" | "envmap" => {
@@ -277,11 +315,11 @@ fn build_emitter<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
                 let scale = p.float("scale", 1.0)?;
                 let to_world = Mat3::from_mat4(p.transform("to_world")?);
                 crate::scene::environment_from_file(&el.dir.join(&file), scale, to_world)
-                    .map_err(|e| el.error(e))?
+                    .map_err(|e| p.error_at("filename", e))?
             };
             ctx.builder.environment(env);
             ctx.has_environment = true;
-            ctx.finish(&p);
+            ctx.finish(&p)?;
             Ok(())
         }
         "area" => Err(el.error("an area emitter must be nested in a <shape>")),

@@ -18,7 +18,7 @@ fn roughness(el: &Element, p: &Props<'_>) -> Result<(MicrofacetType, f32), XmlEr
     let distribution: MicrofacetType = p
         .string("distribution", "beckmann")?
         .parse()
-        .map_err(|e: String| el.error(e))?;
+        .map_err(|e: String| p.error_at("distribution", e))?;
     let alpha = p.float("alpha", 0.1)?;
     let (au, av) = (p.float("alpha_u", alpha)?, p.float("alpha_v", alpha)?);
     if au != av {
@@ -27,18 +27,18 @@ fn roughness(el: &Element, p: &Props<'_>) -> Result<(MicrofacetType, f32), XmlEr
         )));
     }
     if au.is_nan() || au < 0.0 {
-        return Err(el.error(format!("alpha must be ≥ 0, not {au}")));
+        return Err(p.error_at("alpha", format!("alpha must be ≥ 0, not {au}")));
     }
     p.ignore("sample_visible");
     Ok((distribution, au))
 }
 
 /// η and k: a named `material`, or `eta` and `k` given as colours.
-fn conductor_ior(el: &Element, p: &Props<'_>) -> Result<(Spectrum, Spectrum), XmlError> {
+fn conductor_ior(p: &Props<'_>) -> Result<(Spectrum, Spectrum), XmlError> {
     let material: ConductorMaterial = p
         .string("material", "none")?
         .parse()
-        .map_err(|e: String| el.error(e))?;
+        .map_err(|e: String| p.error_at("material", e))?;
     let (eta, k) = material.ior();
     Ok((p.spectrum("eta", eta)?, p.spectrum("k", k)?))
 }
@@ -49,7 +49,7 @@ fn ior(p: &Props<'_>, name: &str, default: f32) -> Result<f32, XmlError> {
     if v > 0.0 {
         Ok(v)
     } else {
-        Err(p.el.error(format!("{name} must be positive, not {v}")))
+        Err(p.error_at(name, format!("{name} must be positive, not {v}")))
     }
 }
 
@@ -58,7 +58,7 @@ pub fn build(ty: &str, el: &Element, p: &Props<'_>) -> Result<Option<Material>, 
     let tint = |p: &Props<'_>| p.spectrum("specular_reflectance", Spectrum::ONE);
     Ok(Some(match ty {
         "conductor" => {
-            let (eta, k) = conductor_ior(el, p)?;
+            let (eta, k) = conductor_ior(p)?;
             Material::Conductor(Conductor {
                 eta,
                 k,
@@ -67,7 +67,7 @@ pub fn build(ty: &str, el: &Element, p: &Props<'_>) -> Result<Option<Material>, 
         }
         "roughconductor" => {
             let (distribution, alpha) = roughness(el, p)?;
-            let (eta, k) = conductor_ior(el, p)?;
+            let (eta, k) = conductor_ior(p)?;
             Material::RoughConductor(RoughConductor {
                 distribution,
                 alpha,

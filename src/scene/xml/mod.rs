@@ -34,8 +34,8 @@ impl SceneError {
     }
 }
 
-/// A loaded scene and the warnings the loader found (unused properties, ignored legacy
-/// parameters, unused `-D` definitions), each located.
+/// A loaded scene and the warnings the loader found (unused `-D` definitions; with
+/// [`LoadOptions::lenient`], unused and duplicated properties), each located.
 #[derive(Debug)]
 pub struct Loaded {
     /// The scene.
@@ -44,12 +44,30 @@ pub struct Loaded {
     pub warnings: Vec<String>,
 }
 
+/// How strictly the loader reads a file.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LoadOptions {
+    /// Unused (misspelt) and duplicated properties become warnings instead of errors,
+    /// for files written for older or more lenient loaders. Mitsuba 3 refuses both
+    /// (`Properties::mark_queried` check in its XML parser), and so does the default.
+    pub lenient: bool,
+}
+
 /// Loads the Mitsuba XML file at `path`; `defines` are `-D name=value` pairs that
 /// override the file's `<default>`s.
 pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Loaded, SceneError> {
+    load_with_options(path, defines, LoadOptions::default())
+}
+
+/// [`load`] with [`LoadOptions`].
+pub fn load_with_options(
+    path: &Path,
+    defines: &[(String, String)],
+    options: LoadOptions,
+) -> Result<Loaded, SceneError> {
     let mut warnings = Vec::new();
     let root = tree::parse_file(path, defines, &mut warnings)?;
-    let scene = build::build(&root, path, &mut warnings)?;
+    let scene = build::build(&root, path, options, &mut warnings)?;
     Ok(Loaded { scene, warnings })
 }
 

@@ -13,6 +13,17 @@ use crate::scene::Camera;
 use crate::settings::MAX_PIXELS;
 use crate::settings::{MisHeuristic, MisSettings, SamplerKind};
 
+/// `hdrfilm`'s format properties and their values in Mitsuba 3 (hdrfilm.cpp), the
+/// default first.
+const FILM_FORMATS: [(&str, &[&str]); 3] = [
+    (
+        "pixel_format",
+        &["rgb", "rgba", "luminance", "luminance_alpha", "xyz", "xyza"],
+    ),
+    ("component_format", &["float16", "float32", "uint32"]),
+    ("file_format", &["openexr", "exr", "rgbe", "hdr", "pfm"]),
+];
+
 /// What the `<sensor>` sets up.
 pub struct SensorSetup {
     pub camera: Camera,
@@ -37,7 +48,7 @@ pub fn build_sensor<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<Sensor
         return Err(el.error("missing <float name=\"fov\">"));
     }
     if !(fov > 0.0 && fov < 180.0) {
-        return Err(el.error(format!("fov must be in (0, 180) degrees, not {fov}")));
+        return Err(p.error_at("fov", format!("fov must be in (0, 180) degrees, not {fov}")));
     }
     let axis = p.string("fov_axis", "x")?;
     let near_clip = p.float("near_clip", 0.01)?;
@@ -52,11 +63,11 @@ pub fn build_sensor<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<Sensor
     let mut sampler = SamplerKind::Independent;
     let mut seed = 0;
     for c in p.nested() {
-        let c = ctx.resolve(c)?;
-        match c.tag.as_str() {
-            "film" => (width, height, filter) = build_film(ctx, c)?,
-            "sampler" => (sampler, spp, seed) = build_sampler(ctx, c)?,
-            other => return Err(c.error(format!("unexpected <{other}> inside <sensor>"))),
+        let c = ctx.resolve(c, &["film", "sampler"])?;
+        if c.tag == "film" {
+            (width, height, filter) = build_film(ctx, c)?;
+        } else {
+            (sampler, spp, seed) = build_sampler(ctx, c)?;
         }
     }
     let (w, h) = (width as f32, height as f32);
@@ -71,18 +82,19 @@ pub fn build_sensor<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<Sensor
         "larger" if w < h => tan_half * w / h,
         "larger" => tan_half,
         other => {
-            return Err(el.error(format!(
-                "unknown fov_axis \"{other}\" (known: x, y, diagonal, smaller, larger)"
-            )));
+            return Err(p.error_at(
+                "fov_axis",
+                format!("unknown fov_axis \"{other}\" (known: x, y, diagonal, smaller, larger)"),
+            ));
         }
     };
     let m = Affine3A::from_mat4(to_world);
     if m.matrix3.determinant().abs() < 1e-12 {
-        return Err(el.error("sensor to_world is singular"));
+        return Err(p.error_at("to_world", "sensor to_world is singular"));
     }
     let mut camera = Camera::new(m, 2.0 * tan_x.atan().to_degrees(), width, height);
     camera.near_clip = near_clip;
-    ctx.finish(&p);
+    ctx.finish(&p)?;
     Ok(SensorSetup {
         camera,
         spp,
@@ -108,15 +120,20 @@ fn build_film<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(u32, u32, F
             "image size {width}x{height} is out of range (1 to {MAX_PIXELS} pixels)"
         )));
     }
-    for ignored in ["pixel_format", "component_format", "file_format"] {
-        p.ignore(ignored);
+    // Checked against Mitsuba 3's hdrfilm values, then ignored: lightlab writes the
+    // format that `-o` names.
+    for (name, known) in FILM_FORMATS {
+        let v = p.string(name, known[0])?;
+        if !known.contains(&v.as_str()) {
+            return Err(p.error_at(
+                name,
+                format!("unknown {name} \"{v}\" (known: {})", known.join(", ")),
+            ));
+        }
     }
     let mut filter = Filter::GAUSSIAN;
     for c in p.nested() {
-        let c = ctx.resolve(c)?;
-        if c.tag != "rfilter" {
-            return Err(c.error("only an <rfilter> can be nested in <film>"));
-        }
+        let c = ctx.resolve(c, &["rfilter"])?;
         let ty = c.required("type")?;
         let fp = Props::new(c)?;
         filter = match ty {
@@ -136,9 +153,9 @@ fn build_film<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(u32, u32, F
             }
         };
         filter.validate().map_err(|e| c.error(e))?;
-        ctx.finish(&fp);
+        ctx.finish(&fp)?;
     }
-    ctx.finish(&p);
+    ctx.finish(&p)?;
     Ok((width, height, filter))
 }
 
@@ -162,11 +179,11 @@ fn build_sampler<'a>(
     let p = Props::new(el)?;
     let spp = p.count("sample_count", 4, 1 << 20)?;
     if spp == 0 {
-        return Err(el.error("sample_count must be at least 1"));
+        return Err(p.error_at("sample_count", "sample_count must be at least 1"));
     }
     let seed = p.count("seed", 0, u32::MAX)? as u64;
     p.ignore("jitter");
-    ctx.finish(&p);
+    ctx.finish(&p)?;
     Ok((kind, spp, seed))
 }
 
@@ -189,8 +206,22 @@ pub fn build_integrator<'a>(
             }
             let light_samples = p.count("emitter_samples", shading, 1024)?;
             let bsdf_samples = p.count("bsdf_samples", shading, 1024)?;
-            if light_samples + bsdf_samples == 0 {
-                return Err(el.error("need at least one emitter or BSDF sample"));
+            // Mitsuba 3 takes 0 as "skip this strategy"; lightlab's MIS estimator takes at
+            // least one sample of each (the render settings refuse 0).
+            for (name, n) in [
+                ("shading_samples", shading),
+                ("emitter_samples", light_samples),
+                ("bsdf_samples", bsdf_samples),
+            ] {
+                if n == 0 {
+                    return Err(p.error_at(
+                        name,
+                        format!(
+                            "{name} 0 is not supported: lightlab's MIS takes at least one \
+                             sample of each strategy (--estimator light or bsdf uses one alone)"
+                        ),
+                    ));
+                }
             }
             MisSettings {
                 heuristic: MisHeuristic::Power,
@@ -201,10 +232,13 @@ pub fn build_integrator<'a>(
         "path" => {
             let depth = p.int("max_depth", -1)?;
             if depth != 2 {
-                return Err(el.error(format!(
-                    "path with max_depth {depth} is not supported: lightlab renders direct \
+                return Err(p.error_at(
+                    "max_depth",
+                    format!(
+                        "path with max_depth {depth} is not supported: lightlab renders direct \
                      light only (max_depth 2)"
-                )));
+                    ),
+                ));
             }
             p.ignore("rr_depth");
             MisSettings::default()
@@ -216,8 +250,8 @@ pub fn build_integrator<'a>(
         }
     };
     if p.bool("hide_emitters", false)? {
-        return Err(el.error("hide_emitters is not supported"));
+        return Err(p.error_at("hide_emitters", "hide_emitters is not supported"));
     }
-    ctx.finish(&p);
+    ctx.finish(&p)?;
     Ok(mis)
 }

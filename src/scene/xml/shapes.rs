@@ -35,21 +35,17 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
     let mut material = None;
     let mut emission = None;
     for c in p.nested() {
-        let c = ctx.resolve(c)?;
-        match c.tag.as_str() {
-            "bsdf" => {
-                if material.is_some() {
-                    return Err(c.error("a shape takes one BSDF"));
-                }
-                material = Some(ctx.material(c)?);
+        let target = ctx.resolve(c, &["bsdf", "emitter"])?;
+        if target.tag == "bsdf" {
+            if material.is_some() {
+                return Err(c.error("a shape takes one BSDF"));
             }
-            "emitter" => {
-                if emission.is_some() {
-                    return Err(c.error("a shape takes one emitter"));
-                }
-                emission = Some(area_emitter(ctx, c)?);
+            material = Some(ctx.material(target)?);
+        } else {
+            if emission.is_some() {
+                return Err(c.error("a shape takes one emitter"));
             }
-            other => return Err(c.error(format!("unexpected <{other}> inside <shape>"))),
+            emission = Some(area_emitter(ctx, target)?);
         }
     }
     let material = match material {
@@ -60,7 +56,7 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
     let flip = p.bool("flip_normals", false)?;
     let linear = Mat3::from_mat4(to_world);
     if linear.determinant().abs() < 1e-12 {
-        return Err(el.error("to_world is singular"));
+        return Err(p.error_at("to_world", "to_world is singular"));
     }
     // Normals transform by the inverse transpose (as Mitsuba's Transform does).
     let normal_matrix = linear.inverse().transpose();
@@ -69,14 +65,26 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
             let center = p.vec3("center", Vec3::ZERO)?;
             let radius = p.float("radius", 1.0)?;
             let scale = uniform_scale(linear).ok_or_else(|| {
-                el.error("a sphere's to_world must be a uniform scale, rotation and translation")
+                p.error_at(
+                    "to_world",
+                    "a sphere's to_world must be a uniform scale, rotation and translation",
+                )
             })?;
             if flip {
-                return Err(el.error("flip_normals on a sphere is not supported"));
+                return Err(p.error_at("flip_normals", "flip_normals on a sphere is not supported"));
             }
-            let r = (radius * scale).abs();
+            // Mitsuba 3 takes a negative radius as a sphere with inward normals; lightlab
+            // has no inward-facing sphere, so it refuses the radius rather than render a
+            // different scene.
+            let r = radius * scale;
             if r.is_nan() || r <= 0.0 {
-                return Err(el.error(format!("radius must be positive, not {radius}")));
+                return Err(p.error_at(
+                    "radius",
+                    format!(
+                        "radius must be positive, not {radius} (a negative radius means \
+                         inward normals in Mitsuba 3, which lightlab does not support)"
+                    ),
+                ));
             }
             let sphere = Sphere {
                 center: to_world.transform_point3(center),
@@ -113,7 +121,10 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
             if (ey.length() - radius).abs() > TOLERANCE * radius
                 || ex.dot(ey).abs() > TOLERANCE * radius * radius
             {
-                return Err(el.error("a disk's to_world must scale x and y equally (no ellipses)"));
+                return Err(p.error_at(
+                    "to_world",
+                    "a disk's to_world must scale x and y equally (no ellipses)",
+                ));
             }
             let n = (normal_matrix * Vec3::Z).normalize() * if flip { -1.0 } else { 1.0 };
             let disk = Disk {
@@ -141,7 +152,7 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
                     mesh_io::load_serialized(&path, index)
                 }
             }
-            .map_err(|e| el.error(e))?;
+            .map_err(|e| p.error_at("filename", e))?;
             let mut mesh = mesh;
             if p.bool("face_normals", false)? {
                 mesh.normals.clear();
@@ -166,7 +177,7 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
             )));
         }
     }
-    ctx.finish(&p);
+    ctx.finish(&p)?;
     Ok(())
 }
 
@@ -180,7 +191,7 @@ fn area_emitter<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<Emission, 
     }
     let p = Props::new(el)?;
     let radiance = p.emission("radiance", Spectrum::ONE)?;
-    ctx.finish(&p);
+    ctx.finish(&p)?;
     Ok(Emission::new(radiance))
 }
 

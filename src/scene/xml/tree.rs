@@ -137,7 +137,8 @@ fn read_scene(path: &Path, from: Option<&Loc>, depth: usize) -> Result<Element, 
         .map(Path::to_path_buf)
         .unwrap_or_else(|| PathBuf::from("."))
         .into();
-    let mut root = convert(&doc, doc.root_element(), &name, &dir, 0)?;
+    let lines = LineStarts::new(&text);
+    let mut root = convert(&lines, doc.root_element(), &name, &dir, 0)?;
     if root.tag != "scene" {
         return Err(root.error("the root element must be <scene version=\"...\">"));
     }
@@ -145,20 +146,51 @@ fn read_scene(path: &Path, from: Option<&Loc>, depth: usize) -> Result<Element, 
     Ok(root)
 }
 
+/// The byte offset where each line of a text starts, so that a byte offset becomes a
+/// line and column by binary search: O(log n) per element, where roxmltree's
+/// `text_pos_at` scans the text from its start (quadratic over a whole scene).
+pub struct LineStarts<'t> {
+    text: &'t str,
+    starts: Vec<usize>,
+}
+
+impl<'t> LineStarts<'t> {
+    /// The line table of `text`.
+    pub fn new(text: &'t str) -> LineStarts<'t> {
+        let starts = std::iter::once(0)
+            .chain(text.match_indices('\n').map(|(i, _)| i + 1))
+            .collect();
+        LineStarts { text, starts }
+    }
+
+    /// 1-based (line, column) of byte `offset`; the column counts characters, as
+    /// roxmltree's `text_pos_at` does.
+    pub fn position(&self, offset: usize) -> (u32, u32) {
+        let offset = offset.min(self.text.len());
+        let line = self.starts.partition_point(|&s| s <= offset).max(1);
+        let start = self.starts[line - 1];
+        let col = self
+            .text
+            .get(start..offset)
+            .map_or(offset - start, |s| s.chars().count());
+        (line as u32, col as u32 + 1)
+    }
+}
+
 /// Converts a roxmltree node and its element children; nesting deeper than
 /// [`MAX_NESTING`] is an error (no scene needs it, and it bounds every recursion here).
 fn convert(
-    doc: &roxmltree::Document,
+    lines: &LineStarts,
     node: roxmltree::Node,
     file: &Rc<str>,
     dir: &Rc<Path>,
     depth: usize,
 ) -> Result<Element, XmlError> {
-    let pos = doc.text_pos_at(node.range().start);
+    let (line, col) = lines.position(node.range().start);
     let loc = Loc {
         file: file.clone(),
-        line: pos.row,
-        col: pos.col,
+        line,
+        col,
     };
     if depth > MAX_NESTING {
         return Err(XmlError::at(
@@ -175,7 +207,7 @@ fn convert(
         children: node
             .children()
             .filter(|c| c.is_element())
-            .map(|c| convert(doc, c, file, dir, depth + 1))
+            .map(|c| convert(lines, c, file, dir, depth + 1))
             .collect::<Result<_, _>>()?,
         loc,
         dir: dir.clone(),
@@ -314,5 +346,19 @@ mod tests {
         assert_eq!(snake_case("diffuseReflectance"), "diffuse_reflectance");
         assert_eq!(snake_case("sampleCount"), "sample_count");
         assert_eq!(snake_case("radius"), "radius");
+    }
+
+    #[test]
+    fn line_starts_agree_with_roxmltree() {
+        let text = "<a>\n  <b/>\r\n\t<cé/><d/>\n</a>";
+        let doc = roxmltree::Document::parse(text).unwrap();
+        let lines = LineStarts::new(text);
+        for node in doc.descendants().filter(|n| n.is_element()) {
+            let at = node.range().start;
+            let pos = doc.text_pos_at(at);
+            assert_eq!(lines.position(at), (pos.row, pos.col), "{:?}", node);
+        }
+        assert_eq!(lines.position(0), (1, 1));
+        assert_eq!(lines.position(text.len() + 5), (4, 5));
     }
 }
