@@ -24,6 +24,10 @@ pub struct ReferenceArgs {
     /// Set a scene file parameter: `-D spp=64` replaces `<default name="spp" .../>`.
     #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = super::args::parse_define)]
     pub define: Vec<(String, String)>,
+    /// Accept unused and duplicated properties in the scene file with a warning (Mitsuba 3
+    /// refuses them; older files may have them).
+    #[arg(long)]
+    pub lenient: bool,
     #[command(flatten)]
     pub strategy: StrategyArgs,
     /// Stop when the relative standard error of the image mean and of 90% of the pixels
@@ -73,7 +77,14 @@ pub fn run(args: &ReferenceArgs) -> Result<(), CliError> {
         }
         _ => {}
     }
-    let scene = scene::load_with(&args.scene, &args.define).map_err(CliError::input)?;
+    let scene = scene::load_with_options(
+        &args.scene,
+        &args.define,
+        scene::xml::LoadOptions {
+            lenient: args.lenient,
+        },
+    )
+    .map_err(CliError::input)?;
     let settings = args.strategy.settings(&scene)?;
     install_stop_handler();
     let bar = ProgressBar::new_spinner();

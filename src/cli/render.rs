@@ -21,6 +21,10 @@ pub struct RenderArgs {
     /// Set a scene file parameter: `-D spp=64` replaces `<default name="spp" .../>`.
     #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = super::args::parse_define)]
     pub define: Vec<(String, String)>,
+    /// Accept unused and duplicated properties in the scene file with a warning (Mitsuba 3
+    /// refuses them; older files may have them).
+    #[arg(long)]
+    pub lenient: bool,
     #[command(flatten)]
     pub strategy: StrategyArgs,
     /// Worker threads (default: all cores). The image is the same for any count.
@@ -70,7 +74,14 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
         )));
     }
     let spec = args.scene.as_deref().unwrap_or(DEFAULT_SCENE);
-    let scene = scene::load_with(spec, &args.define).map_err(CliError::input)?;
+    let scene = scene::load_with_options(
+        spec,
+        &args.define,
+        scene::xml::LoadOptions {
+            lenient: args.lenient,
+        },
+    )
+    .map_err(CliError::input)?;
     let settings = args.strategy.settings(&scene)?;
     let pool = super::args::thread_pool(args.threads)?;
     install_stop_handler();

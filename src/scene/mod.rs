@@ -87,6 +87,16 @@ pub fn load(spec: &str) -> Result<Scene, SceneError> {
 /// in its name, as built-in scenes carry parameters: `scene.xml?spp=64&fov=30` (used
 /// when no file has that exact name), so every command that takes a scene can set them.
 pub fn load_with(spec: &str, defines: &[(String, String)]) -> Result<Scene, SceneError> {
+    load_with_options(spec, defines, xml::LoadOptions::default())
+}
+
+/// [`load_with`] with loader options (`lenient`: unused and duplicated properties of a
+/// scene file are warnings rather than errors).
+pub fn load_with_options(
+    spec: &str,
+    defines: &[(String, String)],
+    options: xml::LoadOptions,
+) -> Result<Scene, SceneError> {
     match spec.strip_prefix("builtin:") {
         Some(name) => {
             if !defines.is_empty() {
@@ -101,7 +111,7 @@ pub fn load_with(spec: &str, defines: &[(String, String)]) -> Result<Scene, Scen
         None => {
             let (path, mut all) = split_defines(spec)?;
             all.extend_from_slice(defines);
-            let loaded = xml::load(std::path::Path::new(path), &all)?;
+            let loaded = xml::load_with_options(std::path::Path::new(path), &all, options)?;
             for w in &loaded.warnings {
                 eprintln!("warning: {w}");
             }
