@@ -107,6 +107,28 @@ impl StrategyArgs {
     }
 }
 
+/// How a scene file is read: `-D` definitions and `--lenient`.
+#[derive(clap::Args, Debug, Clone, Default)]
+pub struct SceneFileArgs {
+    /// Set a scene file parameter: `-D spp=64` replaces `<default name="spp" .../>`.
+    #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = parse_define)]
+    pub define: Vec<(String, String)>,
+    /// Accept unused and duplicated properties in the scene file with a warning (Mitsuba 3
+    /// refuses them; older files may have them).
+    #[arg(long)]
+    pub lenient: bool,
+}
+
+impl SceneFileArgs {
+    /// Loads `spec` (a file or `builtin:NAME`) with these options; a bad scene is exit 2.
+    pub fn load(&self, spec: &str) -> Result<crate::scene::Scene, CliError> {
+        let options = crate::scene::xml::LoadOptions {
+            lenient: self.lenient,
+        };
+        crate::scene::load_with_options(spec, &self.define, options).map_err(CliError::input)
+    }
+}
+
 /// Parses `-D NAME=VALUE`.
 pub fn parse_define(s: &str) -> Result<(String, String), String> {
     match s.split_once('=') {

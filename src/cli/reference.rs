@@ -8,26 +8,21 @@ use std::time::Duration;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 
+use super::args::SceneFileArgs;
 use super::render::{STOP, install_stop_handler};
 use super::{CliError, StrategyArgs};
 use crate::image::io::write_film_with_metadata;
 use crate::image::output::check_output;
 use crate::lab::reference::{ReferenceTarget, render_reference};
 use crate::lab::report::{VERSION, command_line};
-use crate::scene;
 
 /// Arguments of `reference`.
 #[derive(Args, Debug)]
 pub struct ReferenceArgs {
     /// The scene: `builtin:NAME`.
     pub scene: String,
-    /// Set a scene file parameter: `-D spp=64` replaces `<default name="spp" .../>`.
-    #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = super::args::parse_define)]
-    pub define: Vec<(String, String)>,
-    /// Accept unused and duplicated properties in the scene file with a warning (Mitsuba 3
-    /// refuses them; older files may have them).
-    #[arg(long)]
-    pub lenient: bool,
+    #[command(flatten)]
+    pub file: SceneFileArgs,
     #[command(flatten)]
     pub strategy: StrategyArgs,
     /// Stop when the relative standard error of the image mean and of 90% of the pixels
@@ -77,14 +72,7 @@ pub fn run(args: &ReferenceArgs) -> Result<(), CliError> {
         }
         _ => {}
     }
-    let scene = scene::load_with_options(
-        &args.scene,
-        &args.define,
-        scene::xml::LoadOptions {
-            lenient: args.lenient,
-        },
-    )
-    .map_err(CliError::input)?;
+    let scene = args.file.load(&args.scene)?;
     let settings = args.strategy.settings(&scene)?;
     install_stop_handler();
     let bar = ProgressBar::new_spinner();

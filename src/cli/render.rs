@@ -6,11 +6,12 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 
+use super::args::SceneFileArgs;
 use super::{CliError, StrategyArgs};
 use crate::image::io::write_film_with_metadata;
 use crate::image::output::check_output;
 use crate::render::{Control, render};
-use crate::scene::{self, builtin::DEFAULT_SCENE};
+use crate::scene::builtin::DEFAULT_SCENE;
 
 /// Arguments of `render`.
 #[derive(Args, Debug)]
@@ -18,13 +19,8 @@ pub struct RenderArgs {
     /// A scene: a Mitsuba XML file or `builtin:NAME` (see `lightlab scenes`). Default:
     /// builtin:assignment.
     pub scene: Option<String>,
-    /// Set a scene file parameter: `-D spp=64` replaces `<default name="spp" .../>`.
-    #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = super::args::parse_define)]
-    pub define: Vec<(String, String)>,
-    /// Accept unused and duplicated properties in the scene file with a warning (Mitsuba 3
-    /// refuses them; older files may have them).
-    #[arg(long)]
-    pub lenient: bool,
+    #[command(flatten)]
+    pub file: SceneFileArgs,
     #[command(flatten)]
     pub strategy: StrategyArgs,
     /// Worker threads (default: all cores). The image is the same for any count.
@@ -74,14 +70,7 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
         )));
     }
     let spec = args.scene.as_deref().unwrap_or(DEFAULT_SCENE);
-    let scene = scene::load_with_options(
-        spec,
-        &args.define,
-        scene::xml::LoadOptions {
-            lenient: args.lenient,
-        },
-    )
-    .map_err(CliError::input)?;
+    let scene = args.file.load(spec)?;
     let settings = args.strategy.settings(&scene)?;
     let pool = super::args::thread_pool(args.threads)?;
     install_stop_handler();

@@ -17,10 +17,13 @@
 
 use glam::{Vec2, Vec3};
 
-use super::area::{EmitterKind, LightPoint, LightSampling, light_sample, uniform_area_pdf};
+use super::area::{
+    EmitterKind, LightPoint, LightSampling, diffuse_emitted, diffuse_power, light_sample,
+    uniform_area_pdf,
+};
 use super::area::{cosine_weights, hit_plane, safe_spherical_triangle, warped_pdf, warped_sample};
 use super::{LightSample, ShadingPoint};
-use crate::math::{PI, Spectrum, spectrum::luminance};
+use crate::math::Spectrum;
 use crate::sampling::rng::hash_words;
 use crate::sampling::warp::{
     Polygon, PolygonError, spherical_triangle_solid_angle, square_to_triangle_sqrt, triangle_area,
@@ -86,17 +89,12 @@ impl PolygonLight {
     /// Radiance leaving a point of the polygon in direction `w`.
     #[inline]
     pub fn emitted(&self, w: Vec3) -> Spectrum {
-        if self.two_sided || self.polygon.normal().dot(w) > 0.0 {
-            self.radiance
-        } else {
-            Spectrum::ZERO
-        }
+        diffuse_emitted(self.radiance, self.two_sided, self.polygon.normal(), w)
     }
 
     /// Power Φ = π·L·A (×2 when two-sided), as luminance.
     pub fn power(&self) -> f32 {
-        let sides = if self.two_sided { 2.0 } else { 1.0 };
-        sides * PI * luminance(self.radiance) * self.polygon.area()
+        diffuse_power(self.radiance, self.two_sided, self.polygon.area())
     }
 
     /// The corners of triangle `i` of the triangulation.

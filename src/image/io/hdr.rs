@@ -16,12 +16,5 @@ pub(super) fn read_hdr(path: &Path) -> Result<LoadedImage, ImageError> {
         .pixels()
         .map(|p| Spectrum::new(p.0[0], p.0[1], p.0[2]))
         .collect();
-    Ok(LoadedImage {
-        width: w,
-        height: h,
-        rgb,
-        variance: None,
-        spp: None,
-        metadata: Vec::new(),
-    })
+    Ok(LoadedImage::rgb_only(w, h, rgb))
 }

@@ -58,6 +58,20 @@ pub struct LoadedImage {
     pub metadata: Vec<(String, String)>,
 }
 
+impl LoadedImage {
+    /// An image with RGB values only (no variance, spp or metadata).
+    pub fn rgb_only(width: u32, height: u32, rgb: Vec<Spectrum>) -> LoadedImage {
+        LoadedImage {
+            width,
+            height,
+            rgb,
+            variance: None,
+            spp: None,
+            metadata: Vec::new(),
+        }
+    }
+}
+
 /// Writes `film` to `path` by extension: `.exr` (float RGB + variance + spp) or `.png`
 /// (sRGB, scaled by 2^exposure). Other extensions are an error.
 pub fn write_film(film: &Film, path: &Path, exposure: f32) -> Result<(), ImageError> {

@@ -81,12 +81,5 @@ pub(super) fn read_pfm(path: &Path) -> Result<LoadedImage, ImageError> {
             };
         }
     }
-    Ok(LoadedImage {
-        width: w,
-        height: h,
-        rgb,
-        variance: None,
-        spp: None,
-        metadata: Vec::new(),
-    })
+    Ok(LoadedImage::rgb_only(w, h, rgb))
 }

@@ -113,6 +113,23 @@ pub fn uniform_area_pdf(x: Vec3, y: Vec3, ny: Vec3, area: f32) -> f32 {
     super::area_to_solid_angle(1.0 / area, dist2, ny.dot(d) / dist2.sqrt())
 }
 
+/// Radiance a diffuse emitter of radiance `l` sends from a point with normal `n` in
+/// direction `w`: `l` on the front side (or both sides when `two_sided`), else zero.
+#[inline]
+pub(crate) fn diffuse_emitted(l: Spectrum, two_sided: bool, n: Vec3, w: Vec3) -> Spectrum {
+    if two_sided || n.dot(w) > 0.0 {
+        l
+    } else {
+        Spectrum::ZERO
+    }
+}
+
+/// Power Φ = π·L·A of a diffuse emitter (×2 when two-sided), as luminance.
+pub(crate) fn diffuse_power(l: Spectrum, two_sided: bool, area: f32) -> f32 {
+    let sides = if two_sided { 2.0 } else { 1.0 };
+    sides * PI * luminance(l) * area
+}
+
 /// Where the ray x + t·w (t > 0) meets the plane through `o` with normal `n`.
 #[inline]
 pub(crate) fn hit_plane(x: Vec3, w: Vec3, o: Vec3, n: Vec3) -> Option<Vec3> {
@@ -130,17 +147,12 @@ impl AreaLight {
     /// Radiance leaving a point with normal `ny` in direction `w`.
     #[inline]
     pub fn emitted(&self, ny: Vec3, w: Vec3) -> Spectrum {
-        if self.two_sided || ny.dot(w) > 0.0 {
-            self.radiance
-        } else {
-            Spectrum::ZERO
-        }
+        diffuse_emitted(self.radiance, self.two_sided, ny, w)
     }
 
     /// Power Φ = π·L·A (×2 when two-sided), as luminance.
     pub fn power(&self) -> f32 {
-        let sides = if self.two_sided { 2.0 } else { 1.0 };
-        sides * PI * luminance(self.radiance) * self.shape.area()
+        diffuse_power(self.radiance, self.two_sided, self.shape.area())
     }
 
     /// Samples a point on the light with strategy `sampling` (resolved for the shape) and
