@@ -172,7 +172,7 @@ pub fn run_figure(
     log: &dyn Fn(&str),
 ) -> Result<Vec<(String, Vec<StrategyResult>)>, LabError> {
     if let FigureKind::Variance1d = figure.kind {
-        write_variance_1d(figure, dir)?;
+        write_variance_1d(figure, options.base.seed, dir)?;
         return Ok(vec![]);
     }
     let configs = plan(figure, options)?;
