@@ -97,6 +97,7 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
         settings.patch(),
         args.output.display()
     );
+    eprintln!("{}", settings.lights_summary(&scene));
     if out.invalid_samples > 0 {
         eprintln!(
             "warning: {} samples were not finite and were scored as zero",

@@ -8,7 +8,10 @@ mod point;
 mod polygon;
 pub mod select;
 
-pub use area::{AreaLight, EmitterKind, LightPoint, LightSampling, uniform_area_pdf};
+pub use area::{
+    AreaLight, EmitterKind, LightPoint, LightSampling, UnsupportedSampling, check_sampling,
+    sampling_summary, uniform_area_pdf,
+};
 pub use environment::Environment;
 pub use point::PointLight;
 pub use polygon::PolygonLight;

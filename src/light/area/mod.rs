@@ -10,8 +10,10 @@ mod disk;
 mod rectangle;
 mod sphere;
 mod sphere_geometric;
+mod strategies;
 mod triangle;
 
+pub use strategies::{EmitterKind, UnsupportedSampling, check_sampling, sampling_summary};
 pub(crate) use triangle::safe_spherical_triangle;
 
 use glam::{Vec2, Vec3};
@@ -21,56 +23,6 @@ use crate::geometry::Shape;
 use crate::math::{PI, Spectrum, spectrum::luminance};
 
 pub use crate::settings::LightSampling;
-
-/// The kinds of emitting shape, for resolving a strategy name per shape.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum EmitterKind {
-    /// A sphere.
-    Sphere,
-    /// A rectangle.
-    Rectangle,
-    /// A triangle (also each triangle of an emitting mesh).
-    Triangle,
-    /// A disk.
-    Disk,
-    /// A planar polygon.
-    Polygon,
-}
-
-impl EmitterKind {
-    /// The kind of an area light's shape.
-    pub fn of(shape: &Shape) -> EmitterKind {
-        match shape {
-            Shape::Sphere(_) => EmitterKind::Sphere,
-            Shape::Rectangle(_) => EmitterKind::Rectangle,
-            Shape::Triangle(_) => EmitterKind::Triangle,
-            Shape::Disk(_) => EmitterKind::Disk,
-        }
-    }
-}
-
-impl LightSampling {
-    /// The strategy actually used on a shape of kind `kind`: the shape's own strategy of
-    /// that name, `area` where the shape has none, and for `best` solid angle on every
-    /// shape that has it (disks have only `area`). Measured on `sphere-near-plane`, one
-    /// emitter at a time, relMSE at 16 spp (light estimator; `examples/light_strategies.rs`):
-    /// sphere area 2.6e-2, visible-area 3.7e-4, solid-angle 1.0e-4, geometric 6.4e-5;
-    /// rectangle area 2.4e-2, solid-angle 2.6e-4; mesh 1.9e-3 vs 6.0e-4; polygon 1.2e-2 vs
-    /// 1.2e-4. On spheres `geometric` is lower still but costs 6.5× as much per sample
-    /// (775 vs 118 ns), which more than eats its 1.6× gain, so `best` is solid angle.
-    pub fn resolve(self, kind: EmitterKind) -> LightSampling {
-        use LightSampling::*;
-        match (self, kind) {
-            (Best, EmitterKind::Disk) => Area,
-            (Best, _) => SolidAngle,
-            (Area, _) => Area,
-            (VisibleArea | Geometric, EmitterKind::Sphere) => self,
-            (SolidAngle, EmitterKind::Disk) => Area,
-            (SolidAngle, _) => SolidAngle,
-            (VisibleArea | Geometric, _) => Area,
-        }
-    }
-}
 
 /// A diffuse emitter of constant radiance on one shape (a mesh emits as one light per
 /// triangle).
