@@ -33,7 +33,9 @@ pub const FIGURES: &[Figure] = &[
         description: "a spherical light near a plane: p1 area, p2 visible area, p3 solid angle, p4 ∝ G",
         kind: FigureKind::Panels(&[Panel {
             title: "sphere-light",
-            scene: "builtin:sphere-near-plane",
+            // Only the sphere: p₂ and p₄ exist only for spheres, and the full scene's
+            // rectangle and triangles would be refused (issue 18).
+            scene: "builtin:sphere-near-plane?emitters=sphere",
             strategies: &[
                 ("p1 area", "--estimator light --light-sampling area"),
                 (
