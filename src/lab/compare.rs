@@ -25,6 +25,7 @@ use crate::lab::report::{
     Gallery, Report, Table, ViewerImage, command_line, write_report, write_text, write_viewer_image,
 };
 use crate::lab::strategy::Strategy;
+use crate::render::Control;
 use crate::settings::RenderPatch;
 
 /// What to compare.
@@ -102,7 +103,11 @@ pub fn run_compare(
     let mut results = Vec::new();
     let mut films = Vec::new();
     for (strategy, s) in config.strategies.iter().zip(&settings) {
-        let out = render_budget(&scene, s, config.budget, stop);
+        let control = Control {
+            progress: &|_, _| {},
+            stop,
+        };
+        let out = render_budget(&scene, s, config.budget, &control);
         let means = out.film.means();
         let variance: Vec<_> = out
             .film
