@@ -28,6 +28,23 @@ named_enum! {
         Light => "light",
         /// Light and BSDF sampling combined by multiple importance sampling.
         Mis => "mis",
+        /// Lecture only, deliberately biased: uniform (θ, φ) weighted by 2π as if the
+        /// directions were uniform ("1st try: polar coordinates … biased result, more
+        /// samples towards the poles"); the true density is 1/(π² sin θ).
+        HemisphereThetaPhi => "hemisphere-theta-phi",
+    }
+}
+
+impl EstimatorKind {
+    /// Whether the estimator converges to the right answer (all but the lecture's
+    /// deliberately biased `hemisphere-theta-phi`).
+    pub fn is_unbiased(self) -> bool {
+        self != EstimatorKind::HemisphereThetaPhi
+    }
+
+    /// Every unbiased estimator, in CLI order: what tests and benchmarks run.
+    pub fn unbiased() -> impl Iterator<Item = EstimatorKind> {
+        EstimatorKind::ALL.into_iter().filter(|k| k.is_unbiased())
     }
 }
 

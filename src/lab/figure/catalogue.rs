@@ -29,6 +29,21 @@ pub const FIGURES: &[Figure] = &[
         }]),
     },
     Figure {
+        name: "theta-phi-bias",
+        description: "the lecture's 1st try: uniform (θ, φ) with the weight 2π of uniform directions is biased (too bright where light comes from near the normal); uniform (z, φ) is not",
+        kind: FigureKind::Panels(&[Panel {
+            title: "theta-phi-bias",
+            scene: "builtin:assignment",
+            strategies: &[
+                ("theta-phi weight 2pi", "--estimator hemisphere-theta-phi"),
+                ("z-phi weight 2pi", "--estimator hemisphere"),
+            ],
+            spp: 256,
+            reference: LIGHT_REF,
+            reference_spp: 256,
+        }]),
+    },
+    Figure {
         name: "sphere-light",
         description: "a spherical light near a plane: p1 area, p2 visible area, p3 solid angle, p4 ∝ G",
         kind: FigureKind::Panels(&[Panel {
@@ -64,6 +79,24 @@ pub const FIGURES: &[Figure] = &[
             shape_panel("triangle", "builtin:sphere-near-plane?emitters=mesh"),
             shape_panel("polygon", "builtin:sphere-near-plane?emitters=polygon"),
         ]),
+    },
+    Figure {
+        name: "rectangle-strategies",
+        description: "a rectangle light standing almost edge-on over a plane: p1 uniform area (horizon rejection) vs solid angle (Ureña et al. 2013); p3 ∝ G (projected solid angle) is not implemented for planar lights and is refused",
+        kind: FigureKind::Panels(&[Panel {
+            title: "rectangle-strategies",
+            scene: "builtin:sphere-near-plane?emitters=rectangle",
+            strategies: &[
+                ("p1 area", "--estimator light --light-sampling area"),
+                (
+                    "solid angle",
+                    "--estimator light --light-sampling solid-angle",
+                ),
+            ],
+            spp: 16,
+            reference: "--estimator mis --light-sampling solid-angle",
+            reference_spp: 1024,
+        }]),
     },
     Figure {
         name: "many-lights",
