@@ -75,6 +75,24 @@ fn summary_flags(settings: &RenderSettings, time: Option<f64>) -> String {
     }
 }
 
+/// A bar over the `steps` renders of a lab experiment (a reference, each strategy), with
+/// an ETA, and the experiment's log: each line prints above the bar and counts one step.
+pub fn step_bar(steps: u64) -> (ProgressBar, impl Fn(&str)) {
+    let bar = ProgressBar::new(steps.max(1));
+    if let Ok(style) = ProgressStyle::with_template(
+        "{spinner} [{elapsed_precise}] {wide_bar} {pos}/{len} renders, ETA {eta}",
+    ) {
+        bar.set_style(style);
+    }
+    bar.enable_steady_tick(std::time::Duration::from_millis(250));
+    let shown = bar.clone();
+    let log = move |line: &str| {
+        shown.suspend(|| eprintln!("{line}"));
+        shown.inc(1);
+    };
+    (bar, log)
+}
+
 /// Runs `render`.
 pub fn run(args: &RenderArgs) -> Result<(), CliError> {
     let spec = args.scene.as_deref().unwrap_or(DEFAULT_SCENE);
