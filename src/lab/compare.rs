@@ -20,7 +20,7 @@ use crate::lab::budget::{Budget, render_budget};
 use crate::lab::experiment::{
     ReferenceImage, ReferenceSource, load_scene, obtain_reference, resolve,
 };
-use crate::lab::insets::{Inset, pick_insets, write_insets};
+use crate::lab::insets::{Inset, pick_insets, region_table, write_insets};
 use crate::lab::report::{
     Gallery, Report, Table, ViewerImage, command_line, write_report, write_text, write_viewer_image,
 };
@@ -205,6 +205,17 @@ fn write_outputs(
         &config.strategies,
     )?;
     let table = results_table(results);
+    let mut tables = vec![table.clone()];
+    if !config.insets.is_empty() {
+        let labels: Vec<String> = results.iter().map(|r| r.label.clone()).collect();
+        tables.push(region_table(
+            &insets,
+            &reference.rgb,
+            w,
+            &all_means,
+            &labels,
+        ));
+    }
     let title = config
         .title
         .clone()
@@ -233,7 +244,7 @@ fn write_outputs(
         seeds: seeds.clone(),
         notes: notes.clone(),
         viewer,
-        tables: vec![table.clone()],
+        tables: tables.clone(),
         galleries: vec![
             inset_gallery,
             Gallery {
@@ -252,7 +263,11 @@ fn write_outputs(
         seeds,
         crate::lab::report::VERSION,
         notes.join("\n\n"),
-        table.markdown()
+        tables
+            .iter()
+            .map(Table::markdown)
+            .collect::<Vec<_>>()
+            .join("\n\n")
     );
     write_text(&dir.join("results.md"), &md)?;
     let json = json!({

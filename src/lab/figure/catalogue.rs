@@ -1,6 +1,7 @@
 //! The catalogue of the lecture's figures: scenes and labelled strategy flags, as data.
 
 use super::{Figure, FigureKind, Panel};
+use crate::lab::insets::Inset;
 
 const LIGHT_REF: &str = "--estimator mis";
 
@@ -26,6 +27,7 @@ pub const FIGURES: &[Figure] = &[
             spp: 16,
             reference: LIGHT_REF,
             reference_spp: 1024,
+            insets: &[],
         }]),
     },
     Figure {
@@ -41,6 +43,31 @@ pub const FIGURES: &[Figure] = &[
             spp: 256,
             reference: LIGHT_REF,
             reference_spp: 256,
+            insets: &[],
+        }]),
+    },
+    Figure {
+        name: "variance-sources",
+        description: "the lecture's sources of variance in direct lighting, region by region: (1) a glossy lobe, (2) floor lit by a close light, (3) a shadow boundary, (4) open floor; relMSE per region for every estimator at 16 spp",
+        kind: FigureKind::Panels(&[Panel {
+            title: "variance-sources",
+            scene: "builtin:variance-sources",
+            strategies: &[
+                ("uniform hemisphere", "--estimator hemisphere"),
+                ("cosine", "--estimator cosine"),
+                ("BRDF", "--estimator bsdf"),
+                ("light", "--estimator light"),
+                ("MIS", "--estimator mis"),
+            ],
+            spp: 16,
+            reference: LIGHT_REF,
+            reference_spp: 1024,
+            insets: &[
+                region(165, 95, 56, 44),
+                region(290, 175, 64, 30),
+                region(10, 172, 60, 32),
+                region(120, 215, 60, 30),
+            ],
         }]),
     },
     Figure {
@@ -69,6 +96,7 @@ pub const FIGURES: &[Figure] = &[
             spp: 16,
             reference: "--estimator mis --light-sampling solid-angle",
             reference_spp: 1024,
+            insets: &[],
         }]),
     },
     Figure {
@@ -96,6 +124,7 @@ pub const FIGURES: &[Figure] = &[
             spp: 16,
             reference: "--estimator mis --light-sampling solid-angle",
             reference_spp: 1024,
+            insets: &[],
         }]),
     },
     Figure {
@@ -113,6 +142,7 @@ pub const FIGURES: &[Figure] = &[
             spp: 49,
             reference: "--estimator mis --light-select bvh",
             reference_spp: 2048,
+            insets: &[],
         }]),
     },
     Figure {
@@ -129,6 +159,7 @@ pub const FIGURES: &[Figure] = &[
             spp: 16,
             reference: "--estimator mis",
             reference_spp: 1024,
+            insets: &[],
         }]),
     },
     Figure {
@@ -146,9 +177,15 @@ pub const FIGURES: &[Figure] = &[
             spp: 16,
             reference: "--estimator mis",
             reference_spp: 1024,
+            insets: &[],
         }]),
     },
 ];
+
+/// A region of the 384 × 256 image.
+const fn region(x: u32, y: u32, w: u32, h: u32) -> Inset {
+    Inset { x, y, w, h }
+}
 
 const fn shape_panel(title: &'static str, scene: &'static str) -> Panel {
     Panel {
@@ -164,5 +201,6 @@ const fn shape_panel(title: &'static str, scene: &'static str) -> Panel {
         spp: 16,
         reference: "--estimator mis --light-sampling solid-angle",
         reference_spp: 1024,
+        insets: &[],
     }
 }
