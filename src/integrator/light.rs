@@ -18,6 +18,7 @@ pub(super) fn estimate(ctx: &Context<'_>, src: &mut impl Uniform) -> Spectrum {
         hit,
         material,
         w_out,
+        ..
     } = *ctx;
     let u_select = src.next_1d();
     let u_point = src.next_2d();
@@ -25,26 +26,18 @@ pub(super) fn estimate(ctx: &Context<'_>, src: &mut impl Uniform) -> Spectrum {
         return Spectrum::ZERO;
     };
     let light = &scene.lights[sel.index];
-    // Horizon rejection happens inside `sample`, before any shadow ray.
+    // Horizon rejection happens inside `sample`, before any shadow ray (lecture: check
+    // cos θ₁ < 0 before evaluating visibility); without it the shadow ray comes first,
+    // as in the naive loop, and f·cos = 0 scores the sample.
     let Some(ls) = light.sample(at, u_point, lights) else {
         return Spectrum::ZERO;
     };
     let w_in = hit.frame.to_local(ls.w_in);
     let f = f_cos(material, w_in, w_out);
-    if f == Spectrum::ZERO {
+    if lights.horizon_rejection && f == Spectrum::ZERO {
         return Spectrum::ZERO;
     }
-    // Point lights and lights at infinity have no surface point to aim a segment at.
-    let occluded = if ls.delta || ls.distance.is_infinite() {
-        scene
-            .geometry
-            .direction_occluded(hit.p, hit.ng, ls.w_in, ls.distance)
-    } else {
-        scene
-            .geometry
-            .segment_occluded(hit.p, hit.ng, ls.point, ls.normal)
-    };
-    if occluded {
+    if ctx.occluded(&ls) || f == Spectrum::ZERO {
         return Spectrum::ZERO;
     }
     f * ls.radiance / (ls.pdf * sel.pmf)

@@ -10,12 +10,14 @@ pub mod mis;
 
 pub use mis::{MisHeuristic, MisSettings};
 
+use std::sync::atomic::{AtomicU64, Ordering};
+
 use glam::Vec3;
 
 use crate::bsdf::{Bsdf, Material};
 use crate::geometry::{NO_LIGHT, Ray, SurfaceHit};
 use crate::light::select::{LightSelect, Selector};
-use crate::light::{LightStrategy, ShadingPoint};
+use crate::light::{LightSample, LightStrategy, ShadingPoint};
 use crate::math::{Frame, Spectrum};
 use crate::sampling::Uniform;
 use crate::scene::Scene;
@@ -33,6 +35,26 @@ pub struct Estimator {
     pub mis: MisSettings,
     /// How every light is sampled (per-shape strategy, environment compensation).
     pub lights: LightStrategy,
+    /// Shadow rays traced so far (light and MIS estimators).
+    pub shadow_rays: ShadowRays,
+}
+
+/// A count of shadow rays shared by the render's threads (relaxed atomic adds: one per
+/// shadow ray, small beside the ray's own traversal). Cloning copies the count.
+#[derive(Debug, Default)]
+pub struct ShadowRays(AtomicU64);
+
+impl ShadowRays {
+    /// The count so far.
+    pub fn get(&self) -> u64 {
+        self.0.load(Ordering::Relaxed)
+    }
+}
+
+impl Clone for ShadowRays {
+    fn clone(&self) -> Self {
+        ShadowRays(AtomicU64::new(self.get()))
+    }
 }
 
 impl Estimator {
@@ -43,6 +65,7 @@ impl Estimator {
             selector: Selector::new(select, &scene.lights),
             mis: MisSettings::default(),
             lights: LightStrategy::default(),
+            shadow_rays: ShadowRays::default(),
         }
     }
 
@@ -111,6 +134,7 @@ impl Estimator {
             hit,
             material,
             w_out: w_out_local,
+            shadow_rays: &self.shadow_rays,
         };
         match self.kind {
             EstimatorKind::Light => light::estimate(&ctx, src),
@@ -132,6 +156,22 @@ struct Context<'a> {
     material: &'a Material,
     /// w_out in the local shading frame.
     w_out: Vec3,
+    /// Where shadow rays are counted.
+    shadow_rays: &'a ShadowRays,
+}
+
+impl Context<'_> {
+    /// Whether the segment to a light sample is blocked (one counted shadow ray). Point
+    /// lights and lights at infinity have no surface point to aim a segment at.
+    fn occluded(&self, ls: &LightSample) -> bool {
+        self.shadow_rays.0.fetch_add(1, Ordering::Relaxed);
+        let geometry = &self.scene.geometry;
+        if ls.delta || ls.distance.is_infinite() {
+            geometry.direction_occluded(self.hit.p, self.hit.ng, ls.w_in, ls.distance)
+        } else {
+            geometry.segment_occluded(self.hit.p, self.hit.ng, ls.point, ls.normal)
+        }
+    }
 }
 
 /// Radiance emitted by the surface at `hit` towards `w` (world direction, pointing away

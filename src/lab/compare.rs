@@ -70,6 +70,8 @@ pub struct StrategyResult {
     pub relative_efficiency: f64,
     /// Non-finite samples scored as zero.
     pub invalid_samples: u64,
+    /// Shadow rays traced.
+    pub shadow_rays: u64,
 }
 
 /// |relative bias| above this many standard errors marks a result as biased.
@@ -143,6 +145,7 @@ pub fn run_compare(
             efficiency,
             relative_efficiency: 0.0,
             invalid_samples: out.invalid_samples,
+            shadow_rays: out.shadow_rays,
         });
         films.push(out.film);
     }
@@ -230,6 +233,11 @@ fn write_outputs(
         config.budget.describe()
     ));
     notes.push(reference.description.clone());
+    let rays: Vec<String> = results
+        .iter()
+        .map(|r| format!("{} {}", r.label, r.shadow_rays))
+        .collect();
+    notes.push(format!("shadow rays traced: {}", rays.join(", ")));
     for r in results.iter().filter(|r| looks_biased(&r.error)) {
         notes.push(format!(
             "warning: \"{}\" differs from the reference by {:+.2}% = {:+.1} standard errors: biased (or the reference is)",
@@ -293,6 +301,7 @@ fn write_outputs(
             "nan_pixels": r.error.nan_pixels,
             "inf_pixels": r.error.inf_pixels,
             "invalid_samples": r.invalid_samples,
+            "shadow_rays": r.shadow_rays,
             "efficiency": r.efficiency,
             "relative_efficiency": r.relative_efficiency,
         })).collect::<Vec<_>>(),

@@ -6,7 +6,7 @@ use crate::light::{check_sampling, sampling_summary};
 use crate::scene::{Camera, Scene};
 use crate::settings::{
     EstimatorKind, LightSampling, LightSelect, LightStrategy, MAX_PIXELS, MisSettings, Pass,
-    RenderPatch, SamplerKind, SettingsError,
+    RenderPatch, SamplerKind, SettingsError, Switch,
 };
 
 /// A complete description of how to render a scene.
@@ -35,6 +35,8 @@ pub struct RenderSettings {
     /// MIS compensation of environment-map sampling (Karlík et al. 2019); allowed only
     /// with the `mis` estimator, where it stays unbiased.
     pub envmap_compensation: bool,
+    /// Horizon rejection of area-light samples before the shadow ray (default on).
+    pub horizon_rejection: bool,
 }
 
 impl RenderSettings {
@@ -72,6 +74,7 @@ impl RenderSettings {
             pass: p.pass.unwrap_or(Pass::WHOLE),
             filter: scene.filter,
             envmap_compensation: p.envmap_compensation.unwrap_or(false),
+            horizon_rejection: p.horizon_rejection != Some(Switch::Off),
         };
         if s.envmap_compensation && s.estimator != EstimatorKind::Mis {
             return Err(SettingsError::Conflict(format!(
@@ -128,6 +131,7 @@ impl RenderSettings {
         LightStrategy {
             sampling: self.light_sampling,
             env_compensation: self.envmap_compensation && self.estimator == EstimatorKind::Mis,
+            horizon_rejection: self.horizon_rejection,
         }
     }
 
@@ -148,6 +152,7 @@ impl RenderSettings {
             height: self.resolution.map(|r| r.1),
             pass: (self.pass != Pass::WHOLE).then_some(self.pass),
             envmap_compensation: self.envmap_compensation.then_some(true),
+            horizon_rejection: (!self.horizon_rejection).then_some(Switch::Off),
         }
     }
 }

@@ -49,6 +49,16 @@ impl EstimatorKind {
 }
 
 named_enum! {
+    /// A setting that is on or off (`--horizon-rejection on|off`).
+    pub enum Switch: "switch" {
+        /// On.
+        On => "on",
+        /// Off.
+        Off => "off",
+    }
+}
+
+named_enum! {
     /// How the `mis` estimator combines light and BSDF sampling.
     pub enum MisHeuristic: "MIS heuristic" {
         /// Multi-sample model, balance heuristic.
@@ -141,6 +151,10 @@ pub struct LightStrategy {
     pub sampling: LightSampling,
     /// MIS compensation of environment-map sampling (Karlík et al. 2019).
     pub env_compensation: bool,
+    /// Area lights: drop samples below the shading point's horizon before the shadow ray
+    /// (lecture, "lights below the horizon"); off traces the shadow ray first, as the
+    /// naive loop does, for the same image.
+    pub horizon_rejection: bool,
 }
 
 impl Default for LightStrategy {
@@ -149,6 +163,7 @@ impl Default for LightStrategy {
         LightStrategy {
             sampling: LightSampling::Best,
             env_compensation: false,
+            horizon_rejection: true,
         }
     }
 }
@@ -158,6 +173,7 @@ impl From<LightSampling> for LightStrategy {
         LightStrategy {
             sampling,
             env_compensation: false,
+            horizon_rejection: true,
         }
     }
 }

@@ -84,13 +84,7 @@ fn light_sample(
     if f == Spectrum::ZERO {
         return Spectrum::ZERO;
     }
-    let geometry = &ctx.scene.geometry;
-    let occluded = if ls.delta || ls.distance.is_infinite() {
-        geometry.direction_occluded(ctx.hit.p, ctx.hit.ng, ls.w_in, ls.distance)
-    } else {
-        geometry.segment_occluded(ctx.hit.p, ctx.hit.ng, ls.point, ls.normal)
-    };
-    if occluded {
+    if ctx.occluded(&ls) {
         return Spectrum::ZERO;
     }
     let factor = if ls.delta {

@@ -109,6 +109,28 @@ pub const FIGURES: &[Figure] = &[
         ]),
     },
     Figure {
+        name: "horizon",
+        description: "lights below the horizon: uniform area sampling of Veach's four sphere lights from his tilted plates, with and without rejecting samples below the shading point's horizon before the shadow ray; equal images, fewer shadow rays (see the notes), less time",
+        kind: FigureKind::Panels(&[Panel {
+            title: "horizon",
+            scene: "builtin:veach-mis",
+            strategies: &[
+                (
+                    "rejection on",
+                    "--estimator light --light-sampling area --horizon-rejection on",
+                ),
+                (
+                    "rejection off",
+                    "--estimator light --light-sampling area --horizon-rejection off",
+                ),
+            ],
+            spp: 64,
+            reference: LIGHT_REF,
+            reference_spp: 256,
+            insets: &[],
+        }]),
+    },
+    Figure {
         name: "rectangle-strategies",
         description: "a rectangle light standing almost edge-on over a plane: p1 uniform area (horizon rejection) vs solid angle (Ureña et al. 2013); p3 ∝ G (projected solid angle) is not implemented for planar lights and is refused",
         kind: FigureKind::Panels(&[Panel {

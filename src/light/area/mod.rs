@@ -101,6 +101,19 @@ impl AreaLight {
         u: Vec2,
         sampling: LightSampling,
     ) -> Option<LightSample> {
+        self.sample_with(at, u, sampling, true)
+    }
+
+    /// [`AreaLight::sample`], keeping samples below the horizon of `at` (for the
+    /// estimator to score zero after its shadow ray) unless `reject_below_horizon`.
+    #[inline]
+    pub fn sample_with(
+        &self,
+        at: &ShadingPoint,
+        u: Vec2,
+        sampling: LightSampling,
+        reject_below_horizon: bool,
+    ) -> Option<LightSample> {
         let strategy = self.strategy(sampling);
         let point = match &self.shape {
             Shape::Sphere(s) => sphere::sample(s, strategy, at, u),
@@ -108,7 +121,7 @@ impl AreaLight {
             Shape::Triangle(t) => triangle::sample(t, strategy, at, u),
             Shape::Disk(d) => disk::sample(d, at, u),
         }?;
-        light_sample(at, point, |ny, w| self.emitted(ny, w))
+        light_sample(at, point, reject_below_horizon, |ny, w| self.emitted(ny, w))
     }
 
     /// Density per steradian at `at` of choosing the direction towards `y` (a point on
@@ -126,12 +139,14 @@ impl AreaLight {
 }
 
 /// Turns a point drawn on a light into a [`LightSample`] at `at`, or `None` when it
-/// carries no light: below the horizon of `at`, emitting away from `at`
+/// carries no light: below the horizon of `at` (if `reject_below_horizon`; lecture:
+/// check cos θ₁ < 0 before evaluating visibility), emitting away from `at`
 /// (`emitted(ny, −w_in)` is zero), or a degenerate density.
 #[inline]
 pub(crate) fn light_sample(
     at: &ShadingPoint,
     point: LightPoint,
+    reject_below_horizon: bool,
     emitted: impl Fn(Vec3, Vec3) -> Spectrum,
 ) -> Option<LightSample> {
     let LightPoint { y, ny, pdf } = point;
@@ -143,7 +158,7 @@ pub(crate) fn light_sample(
     let distance = dist2.sqrt();
     let w_in = d / distance;
     let radiance = emitted(ny, -w_in);
-    if at.n.dot(w_in) <= 0.0 || radiance == Spectrum::ZERO {
+    if (reject_below_horizon && at.n.dot(w_in) <= 0.0) || radiance == Spectrum::ZERO {
         return None;
     }
     (pdf > 0.0 && pdf.is_finite()).then_some(LightSample {
