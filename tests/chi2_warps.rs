@@ -5,12 +5,12 @@
 mod common;
 
 use common::chi2::{
-    SEED, chi2_all, edges_are_finite, integrates_to_one, inverses_round_trip, sidak_alpha,
+    SEED, chi2_all, edges_are_finite, integrates_to_one, inverses_round_trip, judge, sidak_alpha,
 };
 use glam::{Vec2, Vec3};
 use lightlab::sampling::Rng32;
 use lightlab::sampling::chi2::{Chi2Config, Domain, chi2_test};
-use lightlab::sampling::registry::Family;
+use lightlab::sampling::registry::{self, Family};
 use lightlab::sampling::warp::{
     cosine_hemisphere_pdf, square_to_cosine_hemisphere, uniform_hemisphere_pdf,
 };
@@ -86,5 +86,20 @@ fn harness_rejects_a_pdf_off_by_a_tenth_of_a_percent() {
                 report.p_value
             );
         }
+    }
+}
+
+#[test]
+fn parametrised_warps_pass_chi_square() {
+    // `lightlab warp phong-37` and `warp cone-12`: any exponent or angle, not only the
+    // listed ones; nonsense parameters are refused.
+    let names = ["phong-37", "phong-0.5", "cone-12", "cone-179.5"];
+    let alpha = sidak_alpha(names.len());
+    for (i, name) in names.iter().enumerate() {
+        let entry = registry::find(name).expect("parametrised warp");
+        judge(name, &entry.chi2(SEED + i as u64), alpha).expect("chi-square");
+    }
+    for bad in ["phong--1", "phong-nan", "cone-0", "cone-181", "phong-1e9"] {
+        assert!(registry::find(bad).is_err(), "{bad}");
     }
 }
