@@ -14,7 +14,7 @@ use std::time::Duration;
 use serde_json::json;
 
 use crate::image::io::write_film;
-use crate::image::metrics::{ErrorReport, compare, false_color};
+use crate::image::metrics::{ErrorReport, compare, false_color, signed_difference};
 use crate::lab::LabError;
 use crate::lab::budget::{Budget, render_budget};
 use crate::lab::experiment::{
@@ -191,7 +191,14 @@ fn write_outputs(
             label: r.label.clone(),
             key: slug.clone(),
         });
-        error_rows.push((r.label.clone(), vec![format!("img/{slug}.png"), map]));
+        let bias = format!("img/{slug}-bias.png");
+        crate::image::io::write_rgb8_png(
+            w,
+            h,
+            signed_difference(&means, &reference.rgb, w, h),
+            &dir.join(&bias),
+        )?;
+        error_rows.push((r.label.clone(), vec![format!("img/{slug}.png"), map, bias]));
         all_means.push(means);
     }
     let insets = if config.insets.is_empty() {
@@ -257,8 +264,8 @@ fn write_outputs(
             inset_gallery,
             Gallery {
                 title: "Images and relMSE maps".into(),
-                note: "False colour: per-pixel relMSE on a log scale, 1e-4 (dark blue) to 10 (yellow); magenta marks NaN/Inf.".into(),
-                columns: vec!["image".into(), "relMSE".into()],
+                note: "False colour: per-pixel relMSE on a log scale, 1e-4 (dark blue) to 10 (yellow); magenta marks NaN/Inf. Difference: (image − reference)/reference of luminance over 8×8 blocks, red brighter, blue darker, saturated at ±50 %.".into(),
+                columns: vec!["image".into(), "relMSE".into(), "difference".into()],
                 rows: error_rows,
             },
         ],
