@@ -48,12 +48,16 @@ pub fn run(args: &FigureArgs) -> Result<(), CliError> {
         ));
     }
     if args.list {
+        let width = FIGURES.iter().map(|f| f.name.len()).max().unwrap_or(0);
         for f in FIGURES {
             let status = match plan(f, &options) {
                 Ok(_) => "ready".to_string(),
                 Err(e) => e.to_string(),
             };
-            println!("{:14} {}\n{:14} ({status})", f.name, f.description, "");
+            println!(
+                "{:width$} {}\n{:width$} ({status})",
+                f.name, f.description, ""
+            );
         }
         return Ok(());
     }
