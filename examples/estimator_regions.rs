@@ -67,7 +67,7 @@ fn main() {
     let r_means = r.means();
 
     let mut runs: Vec<(String, RenderSettings)> = Vec::new();
-    for kind in EstimatorKind::ALL {
+    for kind in EstimatorKind::unbiased() {
         if kind == EstimatorKind::Mis {
             continue;
         }

@@ -70,4 +70,6 @@ pub mod flag {
     pub const HEIGHT: &str = "height";
     /// `--pass`.
     pub const PASS: &str = "pass";
+    /// `--horizon-rejection`.
+    pub const HORIZON_REJECTION: &str = "horizon-rejection";
 }

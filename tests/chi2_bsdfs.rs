@@ -1,7 +1,8 @@
 //! Every microfacet BSDF's `sample` against its `pdf`: chi-square at four incident
-//! angles and four roughnesses (α = 0.005 … 1), over the hemisphere and, for sharp
-//! lobes, over a narrow cap around the mirror direction so the grid resolves the lobe's
-//! core; the pdf's normalisation; and `sample`'s f and pdf against `eval` and `pdf`.
+//! angles and four roughnesses (α = 0.005 … 1), and the modified Phong at five exponents
+//! (n = 1 … 1000; its lobe samples below the horizon land in the outside bin), over the
+//! hemisphere and, for sharp lobes, over a narrow cap around the mirror direction so the
+//! grid resolves the lobe's core; the pdf's normalisation; and `sample`'s f and pdf against `eval` and `pdf`.
 //!
 //! `sample` may return nothing (a microfacet reflection below the horizon, lost by
 //! design) or a Dirac sample (the smooth plastic's mirror lobe). Both go to the harness's
@@ -58,8 +59,8 @@ enum Space {
 
 /// The domains of a case at `w_out`:
 /// - α > 0.05 and smooth plastic: the hemisphere of w_in;
-/// - α ≤ 0.05 below 80°: a cap of half-angle 8α around the mirror direction, which
-///   resolves the lobe's core;
+/// - 0 < α < 0.3 below 80°: a cap of half-angle 8α (at most 1.5) around the mirror
+///   direction, which resolves the lobe's core (for the Phong rows, n ≥ 37, too);
 /// - α ≤ 0.05: caps of half-angle 3α and 12α around the normal in half-vector space.
 ///
 /// At grazing angles a sharp reflected lobe is a thin crescent against the horizon that
@@ -74,11 +75,11 @@ fn domains(case: &Case, degrees: f32) -> Vec<(String, Space, Domain)> {
     if a == 0.0 || a >= 0.05 {
         list.push(("hemisphere".into(), Space::Direction, Domain::hemisphere()));
     }
+    if a > 0.0 && a < 0.3 && degrees < 80.0 {
+        let cap = Domain::cap(mirror, (8.0 * a).min(1.5).cos());
+        list.push(("cap".into(), Space::Direction, cap));
+    }
     if a > 0.0 && a <= 0.05 {
-        if degrees < 80.0 {
-            let cap = Domain::cap(mirror, (8.0 * a).cos());
-            list.push(("cap".into(), Space::Direction, cap));
-        }
         for k in [3.0, 12.0] {
             let cap = Domain::cap(Vec3::Z, (k * a).cos());
             list.push((format!("h-cap-{k}a"), Space::HalfVector, cap));

@@ -164,6 +164,7 @@ fn selection_chi2(
         observed,
         expected,
         outside: (0.0, 0.0),
+        unresolved: 0.0,
         statistic,
         dof,
         p_value: if dof == 0 {

@@ -88,20 +88,68 @@ impl Bsdf for Phong {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sampling::Rng32;
+
+    /// ∫ pdf over the cap of half-angle `radius` around `axis`, by the midpoint rule in
+    /// (cos θ, φ) about the axis: independent of `sample`.
+    fn cap_mass(p: &Phong, w_out: Vec3, axis: Vec3, radius: f32) -> f64 {
+        let frame = Frame::from_normal(axis);
+        let (nz, nphi) = (200, 200);
+        let height = 1.0 - radius.cos() as f64;
+        let mut mass = 0.0;
+        for i in 0..nz {
+            let z = 1.0 - height * (i as f64 + 0.5) / nz as f64;
+            let r = (1.0 - z * z).sqrt();
+            for j in 0..nphi {
+                let phi = std::f64::consts::TAU * (j as f64 + 0.5) / nphi as f64;
+                let local = Vec3::new((r * phi.cos()) as f32, (r * phi.sin()) as f32, z as f32);
+                mass += p.pdf(frame.to_world(local), w_out) as f64;
+            }
+        }
+        mass * height * std::f64::consts::TAU / (nz * nphi) as f64
+    }
 
     #[test]
-    fn sample_agrees_with_eval_and_pdf() {
+    fn sampled_fractions_match_the_pdf_integrated_over_caps() {
+        // The fraction of samples in a cap against ∫cap pdf by quadrature, within 5
+        // binomial standard errors: a wrong rotation, lobe choice, exponent or a pdf
+        // that forgets the rejected lobe mass fails (issue 18; `sample` merely copying
+        // `pdf()` proves nothing).
+        const N: usize = 200_000;
         let p = Phong {
             kd: Spectrum::splat(0.3),
             ks: Spectrum::splat(0.6),
-            exponent: 100.0,
+            exponent: 30.0,
         };
-        let w_out = Vec3::new(0.3, 0.1, 0.9).normalize();
-        for i in 0..100 {
-            let u = Vec2::new((i as f32 + 0.5) / 100.0, 0.37);
-            if let Some(s) = p.sample(w_out, u) {
-                assert!((s.pdf - p.pdf(s.w_in, w_out)).abs() <= 1e-4 * s.pdf);
-                assert!((s.f - p.eval(s.w_in, w_out)).length() < 1e-5);
+        for degrees in [0.0f32, 45.0, 80.0] {
+            let t = degrees.to_radians();
+            let w_out = Vec3::new(t.sin() * 0.8, t.sin() * 0.6, t.cos());
+            let mirror = reflect(w_out);
+            let caps = [
+                (mirror, 0.1f32),
+                (mirror, 0.3),
+                (Vec3::Z, 0.4),
+                (Vec3::new(0.6, -0.2, 0.3).normalize(), 0.3),
+            ];
+            let mut rng = Rng32::new(7);
+            let mut counts = [0usize; 4];
+            for _ in 0..N {
+                let u = Vec2::new(rng.next_f32(), rng.next_f32());
+                let Some(s) = p.sample(w_out, u) else {
+                    continue;
+                };
+                for (count, (axis, radius)) in counts.iter_mut().zip(caps) {
+                    *count += usize::from(s.w_in.dot(axis) >= radius.cos());
+                }
+            }
+            for (count, (axis, radius)) in counts.iter().zip(caps) {
+                let expected = cap_mass(&p, w_out, axis, radius);
+                let observed = *count as f64 / N as f64;
+                let sigma = (expected * (1.0 - expected) / N as f64).sqrt();
+                assert!(
+                    (observed - expected).abs() < 5.0 * sigma + 1e-4,
+                    "{degrees}° cap {axis} r {radius}: sampled {observed}, ∫pdf {expected}"
+                );
             }
         }
     }

@@ -87,7 +87,8 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
             emit(scene_ray_figures(s, 4, args.runs));
             let mut base = RenderSettings::for_scene(s);
             base.spp = args.spp;
-            emit(estimator_figures(s, &base, &EstimatorKind::ALL, args.runs));
+            let unbiased: Vec<_> = EstimatorKind::unbiased().collect();
+            emit(estimator_figures(s, &base, &unbiased, args.runs));
         }
         if args.triangles > 0 {
             emit(mesh_figures(args.triangles, args.rays, args.runs));

@@ -8,7 +8,7 @@ use clap::Args;
 
 use super::CliError;
 use super::lab_args::LabRenderArgs;
-use super::render::{STOP, install_stop_handler};
+use super::render::{STOP, install_stop_handler, step_bar};
 use crate::lab::budget::Budget;
 use crate::lab::compare::{CompareConfig, run_compare};
 use crate::lab::experiment::ReferenceSource;
@@ -88,11 +88,12 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
         links: vec![],
     };
     install_stop_handler();
-    let log = |line: &str| eprintln!("{line}");
+    let (bar, log) = step_bar(1 + config.strategies.len() as u64);
     let results = args
         .render
-        .install(|| run_compare(&config, &args.output, &STOP, &log))?
-        .map_err(CliError::input)?;
+        .install(|| run_compare(&config, &args.output, &STOP, &log))?;
+    bar.finish_and_clear();
+    let results = results.map_err(CliError::input)?;
     print!(
         "{}",
         crate::lab::compare::results_table(&results).markdown()

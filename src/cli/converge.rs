@@ -7,7 +7,7 @@ use clap::Args;
 use super::CliError;
 use super::compare::reference_source;
 use super::lab_args::LabRenderArgs;
-use super::render::{STOP, install_stop_handler};
+use super::render::{STOP, install_stop_handler, step_bar};
 use crate::lab::converge::{ConvergeConfig, run_converge};
 use crate::lab::strategy::Strategy;
 
@@ -62,10 +62,12 @@ pub fn run(args: &ConvergeArgs) -> Result<(), CliError> {
         title: None,
     };
     install_stop_handler();
-    let log = |line: &str| eprintln!("{line}");
-    args.render
-        .install(|| run_converge(&config, &args.output, &STOP, &log))?
-        .map_err(CliError::input)?;
+    let (bar, log) = step_bar(1 + config.strategies.len() as u64);
+    let done = args
+        .render
+        .install(|| run_converge(&config, &args.output, &STOP, &log))?;
+    bar.finish_and_clear();
+    done.map_err(CliError::input)?;
     eprintln!("report: {}", args.output.join("index.html").display());
     Ok(())
 }

@@ -6,8 +6,9 @@ use clap::Args;
 
 use super::CliError;
 use super::lab_args::LabRenderArgs;
-use super::render::{STOP, install_stop_handler};
-use crate::lab::figure::{FIGURES, FigureOptions, find, run_figure};
+use super::render::{STOP, install_stop_handler, step_bar};
+use crate::lab::compare::CompareConfig;
+use crate::lab::figure::{FIGURES, FigureOptions, find, plan, run_figure};
 
 /// Arguments of `figure`.
 #[derive(Args, Debug)]
@@ -47,8 +48,9 @@ pub fn run(args: &FigureArgs) -> Result<(), CliError> {
         ));
     }
     if args.list {
+        let width = FIGURES.iter().map(|f| f.name.len()).max().unwrap_or(0);
         for f in FIGURES {
-            println!("{:14} {}", f.name, f.description);
+            println!("{:width$} {}", f.name, f.description);
         }
         return Ok(());
     }
@@ -58,11 +60,19 @@ pub fn run(args: &FigureArgs) -> Result<(), CliError> {
         .ok_or_else(|| CliError::input("give a figure name, or --list to see them"))?;
     let figure = find(name).map_err(CliError::input)?;
     install_stop_handler();
-    let log = |line: &str| eprintln!("{line}");
+    // One step per reference and per strategy of every panel (twice with --converge).
+    let per_panel = |c: &CompareConfig| 1 + c.strategies.len() as u64;
+    let steps: u64 = plan(figure, &options)
+        .map_err(CliError::input)?
+        .iter()
+        .map(per_panel)
+        .sum();
+    let (bar, log) = step_bar(steps * if args.converge.is_some() { 2 } else { 1 });
     let panels = args
         .render
-        .install(|| run_figure(figure, &options, &args.output, &STOP, &log))?
-        .map_err(CliError::input)?;
+        .install(|| run_figure(figure, &options, &args.output, &STOP, &log))?;
+    bar.finish_and_clear();
+    let panels = panels.map_err(CliError::input)?;
     for (panel, results) in &panels {
         println!("## {panel}");
         print!("{}", crate::lab::compare::results_table(results).markdown());

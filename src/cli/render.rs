@@ -10,7 +10,8 @@ use super::args::SceneFileArgs;
 use super::{CliError, StrategyArgs};
 use crate::image::io::write_film_with_metadata;
 use crate::image::output::check_output;
-use crate::render::{Control, render};
+use crate::lab::budget::{Budget, render_budget};
+use crate::render::{Control, RenderSettings};
 use crate::scene::builtin::DEFAULT_SCENE;
 
 /// Arguments of `render`.
@@ -23,6 +24,10 @@ pub struct RenderArgs {
     pub file: SceneFileArgs,
     #[command(flatten)]
     pub strategy: StrategyArgs,
+    /// Render for SECS seconds of wall-clock time instead of a number of samples: rounds
+    /// of whole images until the budget (within about 10 %), merged.
+    #[arg(long, value_name = "SECS", allow_negative_numbers = true)]
+    pub time: Option<f64>,
     /// Worker threads (default: all cores). The image is the same for any count.
     #[arg(long)]
     pub threads: Option<usize>,
@@ -58,6 +63,37 @@ pub fn progress_bar(total: u64) -> ProgressBar {
     bar
 }
 
+/// The flags that describe the render: the settings' own, with `--time SECS` in place
+/// of the nominal `--spp` when time was the budget.
+fn summary_flags(settings: &RenderSettings, time: Option<f64>) -> String {
+    let mut patch = settings.patch();
+    match time {
+        Some(t) => {
+            patch.spp = None;
+            format!("{patch} --time {t}")
+        }
+        None => patch.to_string(),
+    }
+}
+
+/// A bar over the `steps` renders of a lab experiment (a reference, each strategy), with
+/// an ETA, and the experiment's log: each line prints above the bar and counts one step.
+pub fn step_bar(steps: u64) -> (ProgressBar, impl Fn(&str)) {
+    let bar = ProgressBar::new(steps.max(1));
+    if let Ok(style) = ProgressStyle::with_template(
+        "{spinner} [{elapsed_precise}] {wide_bar} {pos}/{len} renders, ETA {eta}",
+    ) {
+        bar.set_style(style);
+    }
+    bar.enable_steady_tick(std::time::Duration::from_millis(250));
+    let shown = bar.clone();
+    let log = move |line: &str| {
+        shown.suspend(|| eprintln!("{line}"));
+        shown.inc(1);
+    };
+    (bar, log)
+}
+
 /// Runs `render`.
 pub fn run(args: &RenderArgs) -> Result<(), CliError> {
     // Refused before the render, not after it.
@@ -72,22 +108,32 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
     let spec = args.scene.as_deref().unwrap_or(DEFAULT_SCENE);
     let scene = args.file.load(spec)?;
     let settings = args.strategy.settings(&scene)?;
+    let budget = match args.time {
+        None => Budget::Spp(settings.spp),
+        Some(_) if args.strategy.0.spp.is_some() => {
+            return Err(CliError::input("give --spp N or --time SECS, not both"));
+        }
+        Some(_) if settings.pass.count > 1 => {
+            return Err(CliError::input(
+                "--pass splits a number of samples; it cannot split --time",
+            ));
+        }
+        Some(t) => super::compare::budget(None, Some(t))?,
+    };
     let pool = super::args::thread_pool(args.threads)?;
     install_stop_handler();
     let camera = settings.camera(&scene);
     let (first, last) = settings.pass.sample_range(settings.spp);
-    let bar = progress_bar((last - first) as u64 * (camera.width * camera.height) as u64);
-    let progress = |done: u64, _total: u64| bar.set_position(done);
-    let out = pool.install(|| {
-        render(
-            &scene,
-            &settings,
-            &Control {
-                progress: &progress,
-                stop: &STOP,
-            },
-        )
+    let bar = progress_bar(match budget {
+        Budget::Spp(_) => (last - first) as u64 * (camera.width * camera.height) as u64,
+        Budget::Time(t) => t.as_millis() as u64,
     });
+    let progress = |done: u64, _total: u64| bar.set_position(done);
+    let control = Control {
+        progress: &progress,
+        stop: &STOP,
+    };
+    let out = pool.install(|| render_budget(&scene, &settings, budget, &control));
     bar.finish_and_clear();
     // An interrupted render still writes its whole rounds, and says so in an EXR header.
     let partial = format!("stopped by Ctrl-C at {} of {} spp", out.spp, last - first);
@@ -112,9 +158,10 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
         },
         out.time.as_secs_f64(),
         samples / out.time.as_secs_f64().max(1e-9) / 1e6,
-        settings.patch(),
+        summary_flags(&settings, args.time),
         args.output.display()
     );
+    eprintln!("{}", settings.lights_summary(&scene));
     if out.invalid_samples > 0 {
         eprintln!(
             "warning: {} samples were not finite and were scored as zero",

@@ -128,6 +128,46 @@ pub fn false_color(image: &[Spectrum], reference: &[Spectrum]) -> Vec<u8> {
         .collect()
 }
 
+/// Side of the blocks [`signed_difference`] averages over.
+pub const DIFFERENCE_BLOCK: u32 = 8;
+
+/// The signed relative difference (image − reference)/reference of luminance averaged
+/// over [`DIFFERENCE_BLOCK`]² blocks (so bias shows through the noise), as RGB8: white
+/// for none, red where the image is brighter, blue where it is darker, saturated at
+/// ±50 %. Blocks where the reference is black are grey.
+pub fn signed_difference(
+    image: &[Spectrum],
+    reference: &[Spectrum],
+    width: u32,
+    height: u32,
+) -> Vec<u8> {
+    let b = DIFFERENCE_BLOCK;
+    let (bw, bh) = (width.div_ceil(b), height.div_ceil(b));
+    let mut sums = vec![(0.0f64, 0.0f64); (bw * bh) as usize];
+    for (i, (&v, &r)) in image.iter().zip(reference).enumerate() {
+        let (x, y) = (i as u32 % width, i as u32 / width);
+        let cell = &mut sums[((y / b) * bw + x / b) as usize];
+        cell.0 += crate::math::spectrum::luminance(v) as f64;
+        cell.1 += crate::math::spectrum::luminance(r) as f64;
+    }
+    (0..width * height)
+        .flat_map(|i| {
+            let (x, y) = (i % width, i / width);
+            let (v, r) = sums[((y / b) * bw + x / b) as usize];
+            if r.is_nan() || r <= 0.0 || !v.is_finite() {
+                return [128, 128, 128];
+            }
+            let d = ((v - r) / r / 0.5).clamp(-1.0, 1.0) as f32;
+            let fade = (255.0 * (1.0 - d.abs())) as u8;
+            if d >= 0.0 {
+                [255, fade, fade]
+            } else {
+                [fade, fade, 255]
+            }
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -9,7 +9,8 @@ use crate::geometry::{Ray, SurfaceHit, offset_origin};
 use crate::math::Spectrum;
 use crate::sampling::Uniform;
 use crate::sampling::warp::{
-    cube_rejection_to_hemisphere, square_to_cosine_hemisphere, square_to_uniform_hemisphere,
+    cube_rejection_to_hemisphere, square_to_cosine_hemisphere, square_to_theta_phi_hemisphere,
+    square_to_uniform_hemisphere,
 };
 use crate::scene::Scene;
 
@@ -26,6 +27,12 @@ pub(super) fn estimate(
         EstimatorKind::Hemisphere => {
             let (w, pdf) = square_to_uniform_hemisphere(src.next_2d());
             (w, f_cos(material, w, w_out) / pdf)
+        }
+        EstimatorKind::HemisphereThetaPhi => {
+            // The lecture's pitfall: the weight 2π of uniform directions, kept although
+            // (θ, φ) crowds the pole (true pdf 1/(π² sin θ)): biased on purpose.
+            let (w, _) = square_to_theta_phi_hemisphere(src.next_2d());
+            (w, f_cos(material, w, w_out) * std::f32::consts::TAU)
         }
         EstimatorKind::HemisphereRejection => {
             let (w, pdf) = cube_rejection_to_hemisphere(src);

@@ -29,17 +29,18 @@ pub(super) fn estimate(ctx: &Context<'_>, src: &mut impl Uniform) -> Spectrum {
         return Spectrum::ZERO;
     };
     let light = &scene.lights[sel.index];
-    // Horizon rejection happens inside `sample`, before any shadow ray.
+    // Horizon rejection happens inside `sample`, before any shadow ray (lecture: check
+    // cos θ₁ < 0 before evaluating visibility); without it the shadow ray comes first,
+    // as in the naive loop, and f·cos = 0 scores the sample.
     let Some(ls) = light.sample(at, u_point, lights) else {
         return Spectrum::ZERO;
     };
     let w_in = hit.frame.to_local(ls.w_in);
     let f = f_cos(material, w_in, w_out);
-    if f == Spectrum::ZERO {
+    if lights.horizon_rejection && f == Spectrum::ZERO {
         return Spectrum::ZERO;
     }
-    // Point lights and lights at infinity have no surface point to aim a segment at.
-    if ctx.occluded(&ls) {
+    if ctx.occluded(&ls) || f == Spectrum::ZERO {
         return Spectrum::ZERO;
     }
     f * ls.radiance / (ls.pdf * sel.pmf)

@@ -13,6 +13,8 @@ pub use crate::settings::{DEFAULT_RIS_CANDIDATES, MAX_RIS_CANDIDATES};
 
 pub use mis::{MisHeuristic, MisSettings};
 
+use std::sync::atomic::{AtomicU64, Ordering};
+
 use glam::Vec3;
 
 use crate::bsdf::{Bsdf, Material};
@@ -39,6 +41,50 @@ pub struct Estimator {
     /// Candidates per light sample under resampled importance sampling (light selection
     /// `ris`); `None` for the other selectors.
     pub ris: Option<u32>,
+    /// Shadow rays traced so far (light and MIS estimators).
+    pub shadow_rays: ShadowRays,
+}
+
+/// A count of shadow rays shared by the render's threads: one slot (its own cache line)
+/// per worker thread, so counting costs an uncontended add rather than a cache line
+/// bounced between threads on every shadow ray. Cloning copies the count.
+#[derive(Debug)]
+pub struct ShadowRays(Box<[Slot; SLOTS]>);
+
+/// Slots of [`ShadowRays`]; threads beyond share them round-robin.
+const SLOTS: usize = 64;
+
+/// One thread's count, alone on its cache line.
+#[derive(Debug, Default)]
+#[repr(align(128))]
+struct Slot(AtomicU64);
+
+impl Default for ShadowRays {
+    fn default() -> Self {
+        ShadowRays(Box::new(std::array::from_fn(|_| Slot::default())))
+    }
+}
+
+impl ShadowRays {
+    /// Counts one shadow ray.
+    #[inline]
+    fn add(&self) {
+        let i = rayon::current_thread_index().unwrap_or(0) % SLOTS;
+        self.0[i].0.fetch_add(1, Ordering::Relaxed);
+    }
+
+    /// The count so far.
+    pub fn get(&self) -> u64 {
+        self.0.iter().map(|s| s.0.load(Ordering::Relaxed)).sum()
+    }
+}
+
+impl Clone for ShadowRays {
+    fn clone(&self) -> Self {
+        let copy = ShadowRays::default();
+        copy.0[0].0.store(self.get(), Ordering::Relaxed);
+        copy
+    }
 }
 
 impl Estimator {
@@ -51,6 +97,7 @@ impl Estimator {
             mis: MisSettings::default(),
             lights: LightStrategy::default(),
             ris: (select == LightSelect::Ris).then_some(DEFAULT_RIS_CANDIDATES),
+            shadow_rays: ShadowRays::default(),
         }
     }
 
@@ -127,6 +174,7 @@ impl Estimator {
             material,
             w_out: w_out_local,
             ris: self.ris,
+            shadow_rays: &self.shadow_rays,
         };
         match self.kind {
             EstimatorKind::Light => light::estimate(&ctx, src),
@@ -150,12 +198,15 @@ struct Context<'a> {
     w_out: Vec3,
     /// Light samples are resampled from this many candidates (RIS), if set.
     ris: Option<u32>,
+    /// Where shadow rays are counted.
+    shadow_rays: &'a ShadowRays,
 }
 
 impl Context<'_> {
-    /// Whether the shadow ray from the shading point to the light sample `ls` is blocked
-    /// (point lights and lights at infinity have no surface point to aim a segment at).
+    /// Whether the segment to a light sample is blocked (one counted shadow ray). Point
+    /// lights and lights at infinity have no surface point to aim a segment at.
     fn occluded(&self, ls: &LightSample) -> bool {
+        self.shadow_rays.add();
         let geometry = &self.scene.geometry;
         if ls.delta || ls.distance.is_infinite() {
             geometry.direction_occluded(self.hit.p, self.hit.ng, ls.w_in, ls.distance)

@@ -46,26 +46,24 @@ pub fn round_seed(seed: u64, k: u32) -> u64 {
 }
 
 /// Renders `settings` (whose `spp` is ignored for a time budget) within `budget`.
-/// A stop request ends the render after the current round.
+/// A stop request (`control.stop`) ends the render after the current round; progress
+/// goes to `control.progress` as (samples done, samples total) for an spp budget and as
+/// (milliseconds elapsed, milliseconds of budget) for a time budget.
 pub fn render_budget(
     scene: &Scene,
     settings: &RenderSettings,
     budget: Budget,
-    stop: &AtomicBool,
+    control: &Control<'_>,
 ) -> RenderOutput {
-    let control = Control {
-        progress: &|_, _| {},
-        stop,
-    };
     match budget {
         Budget::Spp(n) => {
             let s = RenderSettings {
                 spp: n,
                 ..settings.clone()
             };
-            render(scene, &s, &control)
+            render(scene, &s, control)
         }
-        Budget::Time(limit) => render_timed(scene, settings, limit, &control),
+        Budget::Time(limit) => render_timed(scene, settings, limit, control),
     }
 }
 
@@ -81,8 +79,10 @@ fn render_timed(
     // own rounds (an eighth of the call).
     let deadline = AtomicBool::new(false);
     let finished = AtomicBool::new(false);
+    let millis = |d: Duration| d.as_millis() as u64;
+    let progress = |_: u64, _: u64| (control.progress)(millis(start.elapsed()), millis(limit));
     let timed = Control {
-        progress: control.progress,
+        progress: &progress,
         stop: &deadline,
     };
     let out = std::thread::scope(|scope| {
@@ -151,7 +151,11 @@ mod tests {
         s.resolution = Some((32, 24));
         let stop = AtomicBool::new(false);
         let limit = Duration::from_millis(300);
-        let out = render_budget(&scene, &s, Budget::Time(limit), &stop);
+        let control = Control {
+            progress: &|_, _| {},
+            stop: &stop,
+        };
+        let out = render_budget(&scene, &s, Budget::Time(limit), &control);
         let t = out.time.as_secs_f64();
         assert!((t - 0.3).abs() < 0.03, "time {t}");
         assert!(out.film.pixels.iter().all(|p| p.count == out.spp));

@@ -14,17 +14,18 @@ use std::time::Duration;
 use serde_json::json;
 
 use crate::image::io::write_film;
-use crate::image::metrics::{ErrorReport, compare, false_color};
+use crate::image::metrics::{ErrorReport, compare, false_color, signed_difference};
 use crate::lab::LabError;
 use crate::lab::budget::{Budget, render_budget};
 use crate::lab::experiment::{
     ReferenceImage, ReferenceSource, load_scene, obtain_reference, resolve,
 };
-use crate::lab::insets::{Inset, check_insets, pick_insets, write_insets};
+use crate::lab::insets::{Inset, check_insets, pick_insets, region_table, write_insets};
 use crate::lab::report::{
     Gallery, Report, Table, ViewerImage, command_line, write_report, write_text, write_viewer_image,
 };
 use crate::lab::strategy::Strategy;
+use crate::render::Control;
 use crate::settings::RenderPatch;
 
 /// What to compare.
@@ -69,6 +70,8 @@ pub struct StrategyResult {
     pub relative_efficiency: f64,
     /// Non-finite samples scored as zero.
     pub invalid_samples: u64,
+    /// Shadow rays traced.
+    pub shadow_rays: u64,
 }
 
 /// |relative bias| above this many standard errors marks a result as biased.
@@ -104,7 +107,11 @@ pub fn run_compare(
     let mut results = Vec::new();
     let mut films = Vec::new();
     for (strategy, s) in config.strategies.iter().zip(&settings) {
-        let out = render_budget(&scene, s, config.budget, stop);
+        let control = Control {
+            progress: &|_, _| {},
+            stop,
+        };
+        let out = render_budget(&scene, s, config.budget, &control);
         let means = out.film.means();
         let variance: Vec<_> = out
             .film
@@ -140,6 +147,7 @@ pub fn run_compare(
             efficiency,
             relative_efficiency: 0.0,
             invalid_samples: out.invalid_samples,
+            shadow_rays: out.shadow_rays,
         });
         films.push(out.film);
     }
@@ -185,7 +193,14 @@ fn write_outputs(
             label: r.label.clone(),
             key: slug.clone(),
         });
-        error_rows.push((r.label.clone(), vec![format!("img/{slug}.png"), map]));
+        let bias = format!("img/{slug}-bias.png");
+        crate::image::io::write_rgb8_png(
+            w,
+            h,
+            signed_difference(&means, &reference.rgb, w, h),
+            &dir.join(&bias),
+        )?;
+        error_rows.push((r.label.clone(), vec![format!("img/{slug}.png"), map, bias]));
         all_means.push(means);
     }
     let insets = if config.insets.is_empty() {
@@ -202,6 +217,17 @@ fn write_outputs(
         &config.strategies,
     )?;
     let table = results_table(results);
+    let mut tables = vec![table.clone()];
+    if !config.insets.is_empty() {
+        let labels: Vec<String> = results.iter().map(|r| r.label.clone()).collect();
+        tables.push(region_table(
+            &insets,
+            &reference.rgb,
+            w,
+            &all_means,
+            &labels,
+        ));
+    }
     let title = config
         .title
         .clone()
@@ -216,6 +242,11 @@ fn write_outputs(
         config.budget.describe()
     ));
     notes.push(reference.description.clone());
+    let rays: Vec<String> = results
+        .iter()
+        .map(|r| format!("{} {}", r.label, r.shadow_rays))
+        .collect();
+    notes.push(format!("shadow rays traced: {}", rays.join(", ")));
     for r in results.iter().filter(|r| looks_biased(&r.error)) {
         notes.push(format!(
             "warning: \"{}\" differs from the reference by {} = {:+.1} standard errors: biased (or the reference is)",
@@ -230,13 +261,13 @@ fn write_outputs(
         seeds: seeds.clone(),
         notes: notes.clone(),
         viewer,
-        tables: vec![table.clone()],
+        tables: tables.clone(),
         galleries: vec![
             inset_gallery,
             Gallery {
                 title: "Images and relMSE maps".into(),
-                note: "False colour: per-pixel relMSE on a log scale, 1e-4 (dark blue) to 10 (yellow); magenta marks NaN/Inf.".into(),
-                columns: vec!["image".into(), "relMSE".into()],
+                note: "False colour: per-pixel relMSE on a log scale, 1e-4 (dark blue) to 10 (yellow); magenta marks NaN/Inf. Difference: (image − reference)/reference of luminance over 8×8 blocks, red brighter, blue darker, saturated at ±50 %.".into(),
+                columns: vec!["image".into(), "relMSE".into(), "difference".into()],
                 rows: error_rows,
             },
         ],
@@ -249,7 +280,11 @@ fn write_outputs(
         seeds,
         crate::lab::report::VERSION,
         notes.join("\n\n"),
-        table.markdown()
+        tables
+            .iter()
+            .map(Table::markdown)
+            .collect::<Vec<_>>()
+            .join("\n\n")
     );
     write_text(&dir.join("results.md"), &md)?;
     let json = json!({
@@ -275,6 +310,7 @@ fn write_outputs(
             "nan_pixels": r.error.nan_pixels,
             "inf_pixels": r.error.inf_pixels,
             "invalid_samples": r.invalid_samples,
+            "shadow_rays": r.shadow_rays,
             "efficiency": r.efficiency,
             "relative_efficiency": r.relative_efficiency,
         })).collect::<Vec<_>>(),

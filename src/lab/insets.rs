@@ -6,10 +6,10 @@ use std::path::Path;
 use std::str::FromStr;
 
 use crate::image::io::to_srgb8;
-use crate::image::metrics::pixel_rel_mse;
+use crate::image::metrics::{compare, pixel_rel_mse};
 use crate::lab::LabError;
 use crate::lab::experiment::ReferenceImage;
-use crate::lab::report::{Gallery, write_magnified_png};
+use crate::lab::report::{Gallery, Table, write_magnified_png};
 use crate::lab::strategy::Strategy;
 use crate::math::Spectrum;
 
@@ -170,6 +170,46 @@ pub fn write_insets(
             .collect(),
         rows,
     })
+}
+
+/// relMSE of each image within each inset (rows: `labels`; columns: insets), for
+/// figures that compare named regions (the lecture's sources of variance).
+pub fn region_table(
+    insets: &[Inset],
+    reference: &[Spectrum],
+    width: u32,
+    images: &[Vec<Spectrum>],
+    labels: &[String],
+) -> Table {
+    let crop = |img: &[Spectrum], r: &Inset| -> Vec<Spectrum> {
+        (r.y..r.y + r.h)
+            .flat_map(|y| (r.x..r.x + r.w).map(move |x| (y * width + x) as usize))
+            .filter_map(|i| img.get(i).copied())
+            .collect()
+    };
+    let mut header = vec!["strategy".to_string()];
+    header.extend(
+        insets
+            .iter()
+            .map(|r| format!("{},{},{},{}", r.x, r.y, r.w, r.h)),
+    );
+    let rows = labels
+        .iter()
+        .zip(images)
+        .map(|(label, img)| {
+            let mut row = vec![label.clone()];
+            row.extend(insets.iter().map(|r| {
+                let e = compare(&crop(img, r), None, &crop(reference, r), None);
+                format!("{:.3e}", e.rel_mse)
+            }));
+            row
+        })
+        .collect();
+    Table {
+        caption: "relMSE within each region (x,y,w,h)".into(),
+        header,
+        rows,
+    }
 }
 
 #[cfg(test)]

@@ -8,7 +8,10 @@ mod point;
 mod polygon;
 pub mod select;
 
-pub use area::{AreaLight, EmitterKind, LightPoint, LightSampling, uniform_area_pdf};
+pub use area::{
+    AreaLight, EmitterKind, LightPoint, LightSampling, UnsupportedSampling, check_sampling,
+    sampling_summary, uniform_area_pdf,
+};
 pub use environment::Environment;
 pub use point::PointLight;
 pub use polygon::PolygonLight;
@@ -87,7 +90,7 @@ impl Light {
         strategy: LightStrategy,
     ) -> Option<LightSample> {
         match self {
-            Light::Area(l) => l.sample(at, u, strategy.sampling),
+            Light::Area(l) => l.sample_with(at, u, strategy.sampling, strategy.horizon_rejection),
             Light::Point(l) => l.sample(at),
             Light::Environment(e) => {
                 let (w_in, radiance, pdf) = e.sample(u, strategy.env_compensation)?;
@@ -102,7 +105,9 @@ impl Light {
                     normal: -w_in,
                 })
             }
-            Light::Polygon(l) => l.sample(at, u, strategy.sampling),
+            Light::Polygon(l) => {
+                l.sample_with(at, u, strategy.sampling, strategy.horizon_rejection)
+            }
         }
     }
 

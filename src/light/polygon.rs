@@ -126,6 +126,18 @@ impl PolygonLight {
         u: Vec2,
         sampling: LightSampling,
     ) -> Option<LightSample> {
+        self.sample_with(at, u, sampling, true)
+    }
+
+    /// [`PolygonLight::sample`], keeping samples below the horizon of `at` unless
+    /// `reject_below_horizon` (see [`AreaLight::sample_with`](super::AreaLight::sample_with)).
+    pub fn sample_with(
+        &self,
+        at: &ShadingPoint,
+        u: Vec2,
+        sampling: LightSampling,
+        reject_below_horizon: bool,
+    ) -> Option<LightSample> {
         let n = self.polygon.normal();
         let strategy = Self::strategy(sampling);
         let point = if matches!(
@@ -141,7 +153,7 @@ impl PolygonLight {
                 pdf: uniform_area_pdf(at.p, y, n, self.polygon.area()),
             }
         };
-        light_sample(at, point, |_, w| self.emitted(w))
+        light_sample(at, point, reject_below_horizon, |_, w| self.emitted(w))
     }
 
     /// A triangle ∝ its solid angle, then a direction uniform in it (or a point uniform by

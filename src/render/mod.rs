@@ -35,6 +35,8 @@ pub struct RenderOutput {
     pub invalid_samples: u64,
     /// True when a stop request ended the render early.
     pub stopped: bool,
+    /// Shadow rays traced (light and MIS estimators).
+    pub shadow_rays: u64,
 }
 
 impl RenderOutput {
@@ -54,6 +56,7 @@ impl RenderOutput {
                 spp: t.spp + next.spp,
                 invalid_samples: t.invalid_samples + next.invalid_samples,
                 stopped: next.stopped,
+                shadow_rays: t.shadow_rays + next.shadow_rays,
             },
         }
     }
@@ -122,6 +125,7 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
         spp: done - first,
         invalid_samples: invalid.into_inner(),
         stopped,
+        shadow_rays: estimator.shadow_rays.get(),
     }
 }
 

@@ -2,10 +2,11 @@
 //! once per render from the defaults and the [`RenderPatch`] layers over them.
 
 use crate::image::Filter;
+use crate::light::{check_sampling, sampling_summary};
 use crate::scene::{Camera, Scene};
 use crate::settings::{
     DEFAULT_RIS_CANDIDATES, EstimatorKind, LightSampling, LightSelect, LightStrategy, MAX_PIXELS,
-    MisSettings, Pass, RenderPatch, SamplerKind, SettingsError,
+    MisSettings, Pass, RenderPatch, SamplerKind, SettingsError, Switch,
 };
 
 /// A complete description of how to render a scene.
@@ -36,6 +37,8 @@ pub struct RenderSettings {
     /// MIS compensation of environment-map sampling (Karlík et al. 2019); allowed only
     /// with the `mis` estimator, where it stays unbiased.
     pub envmap_compensation: bool,
+    /// Horizon rejection of area-light samples before the shadow ray (default on).
+    pub horizon_rejection: bool,
 }
 
 impl RenderSettings {
@@ -49,7 +52,8 @@ impl RenderSettings {
     /// The settings for `scene`: the defaults, then the scene file's requests, then each
     /// of `layers` in order (for instance the command line, a lab strategy, an
     /// experiment's budget); a later layer wins field by field. Checks what a layer alone
-    /// cannot: the image size in pixels, and compensation only with `mis`.
+    /// cannot: the image size in pixels, compensation only with `mis`, and a light
+    /// sampling strategy every emitting shape of the scene has (no silent fallback).
     pub fn build(scene: &Scene, layers: &[&RenderPatch]) -> Result<RenderSettings, SettingsError> {
         let p = layers
             .iter()
@@ -73,12 +77,17 @@ impl RenderSettings {
             pass: p.pass.unwrap_or(Pass::WHOLE),
             filter: scene.filter,
             envmap_compensation: p.envmap_compensation.unwrap_or(false),
+            horizon_rejection: p.horizon_rejection != Some(Switch::Off),
         };
         if s.envmap_compensation && s.estimator != EstimatorKind::Mis {
             return Err(SettingsError::Conflict(format!(
                 "--envmap-compensation is unbiased only with --estimator mis, not {}",
                 s.estimator
             )));
+        }
+        if s.samples_lights() {
+            check_sampling(&scene.lights, s.light_sampling)
+                .map_err(|e| SettingsError::Conflict(e.to_string()))?;
         }
         if let Some((w, h)) = s.resolution
             && (w == 0 || h == 0 || w as u64 * h as u64 > MAX_PIXELS)
@@ -88,6 +97,27 @@ impl RenderSettings {
             )));
         }
         Ok(s)
+    }
+
+    /// Whether the estimator samples lights (`light`, `mis`): only then does the light
+    /// sampling strategy run.
+    pub fn samples_lights(&self) -> bool {
+        matches!(self.estimator, EstimatorKind::Light | EstimatorKind::Mis)
+    }
+
+    /// Per light type, which strategy runs (`lights: 1 rectangle (solid-angle)`), or how
+    /// the estimator finds lights when it samples none.
+    pub fn lights_summary(&self, scene: &Scene) -> String {
+        if self.samples_lights() {
+            let summary = sampling_summary(&scene.lights, Some(self.light_sampling));
+            format!("lights: {summary}")
+        } else {
+            let summary = sampling_summary(&scene.lights, None);
+            format!(
+                "lights: {summary} (not sampled: {} directions find them)",
+                self.estimator
+            )
+        }
     }
 
     /// The camera with the resolution override applied.
@@ -104,6 +134,7 @@ impl RenderSettings {
         LightStrategy {
             sampling: self.light_sampling,
             env_compensation: self.envmap_compensation && self.estimator == EstimatorKind::Mis,
+            horizon_rejection: self.horizon_rejection,
         }
     }
 
@@ -125,6 +156,7 @@ impl RenderSettings {
             height: self.resolution.map(|r| r.1),
             pass: (self.pass != Pass::WHOLE).then_some(self.pass),
             envmap_compensation: self.envmap_compensation.then_some(true),
+            horizon_rejection: (!self.horizon_rejection).then_some(Switch::Off),
         }
     }
 }
@@ -178,5 +210,14 @@ mod tests {
         };
         assert!(bad("--envmap-compensation --estimator light").contains("--estimator mis"));
         assert!(bad("--width 32768 --height 32768").contains("--width 32768 --height 32768"));
+        // No silent fallback: the assignment's light is a rectangle (issue 18).
+        for s in ["geometric", "visible-area"] {
+            let e = bad(&format!("--estimator light --light-sampling {s}"));
+            assert!(e.contains(s) && e.contains("rectangle"), "{e}");
+        }
+        let bsdf: RenderPatch = "--estimator bsdf --light-sampling geometric"
+            .parse()
+            .unwrap();
+        assert!(RenderSettings::build(&scene, &[&bsdf]).is_ok());
     }
 }

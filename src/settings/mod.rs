@@ -28,6 +28,33 @@ named_enum! {
         Light => "light",
         /// Light and BSDF sampling combined by multiple importance sampling.
         Mis => "mis",
+        /// Lecture only, deliberately biased: uniform (θ, φ) weighted by 2π as if the
+        /// directions were uniform ("1st try: polar coordinates … biased result, more
+        /// samples towards the poles"); the true density is 1/(π² sin θ).
+        HemisphereThetaPhi => "hemisphere-theta-phi",
+    }
+}
+
+impl EstimatorKind {
+    /// Whether the estimator converges to the right answer (all but the lecture's
+    /// deliberately biased `hemisphere-theta-phi`).
+    pub fn is_unbiased(self) -> bool {
+        self != EstimatorKind::HemisphereThetaPhi
+    }
+
+    /// Every unbiased estimator, in CLI order: what tests and benchmarks run.
+    pub fn unbiased() -> impl Iterator<Item = EstimatorKind> {
+        EstimatorKind::ALL.into_iter().filter(|k| k.is_unbiased())
+    }
+}
+
+named_enum! {
+    /// A setting that is on or off (`--horizon-rejection on|off`).
+    pub enum Switch: "switch" {
+        /// On.
+        On => "on",
+        /// Off.
+        Off => "off",
     }
 }
 
@@ -137,6 +164,10 @@ pub struct LightStrategy {
     pub sampling: LightSampling,
     /// MIS compensation of environment-map sampling (Karlík et al. 2019).
     pub env_compensation: bool,
+    /// Area lights: drop samples below the shading point's horizon before the shadow ray
+    /// (lecture, "lights below the horizon"); off traces the shadow ray first, as the
+    /// naive loop does, for the same image.
+    pub horizon_rejection: bool,
 }
 
 impl Default for LightStrategy {
@@ -145,6 +176,7 @@ impl Default for LightStrategy {
         LightStrategy {
             sampling: LightSampling::Best,
             env_compensation: false,
+            horizon_rejection: true,
         }
     }
 }
@@ -154,6 +186,7 @@ impl From<LightSampling> for LightStrategy {
         LightStrategy {
             sampling,
             env_compensation: false,
+            horizon_rejection: true,
         }
     }
 }

@@ -9,6 +9,7 @@ use std::str::FromStr;
 
 use super::{
     EstimatorKind, LightSampling, LightSelect, MAX_RIS_CANDIDATES, MisHeuristic, Pass, SamplerKind,
+    Switch,
 };
 use crate::names::flag;
 
@@ -142,6 +143,8 @@ render_patch! {
     height: u32 = flag::HEIGHT,
     /// Render only pass I of N of the samples (`2/8`).
     pass: Pass = flag::PASS,
+    /// Area lights: reject samples below the horizon before the shadow ray: on (default), off.
+    horizon_rejection: Switch = flag::HORIZON_REJECTION,
 }
 
 /// The known flags, for error messages.

@@ -3,13 +3,16 @@
 
 use glam::Vec3;
 use lightlab::bsdf::{
-    Conductor, ConductorMaterial, Material, MicrofacetType, Plastic, PlasticParams, RoughConductor,
-    RoughPlastic,
+    Conductor, ConductorMaterial, Material, MicrofacetType, Phong, Plastic, PlasticParams,
+    RoughConductor, RoughPlastic,
 };
 use lightlab::math::Spectrum;
 
 /// Roughnesses of every microfacet case, from nearly smooth to very rough.
 pub const ALPHAS: [f32; 4] = [0.005, 0.05, 0.3, 1.0];
+
+/// Phong exponents, from a broad lobe to a sharp one (37: not a power of ten).
+pub const PHONG_EXPONENTS: [f32; 5] = [1.0, 10.0, 37.0, 100.0, 1000.0];
 
 /// Angles of w_out from the normal, in degrees: normal, 45°, 80° and grazing.
 pub const ANGLES: [f32; 4] = [0.0, 45.0, 80.0, 89.0];
@@ -30,7 +33,9 @@ pub fn w_out(degrees: f32) -> Vec3 {
     Vec3::new(t.sin() * 0.8, t.sin() * 0.6, t.cos())
 }
 
-/// Every rough conductor and rough plastic configuration, plus the smooth plastic.
+/// Every rough conductor and rough plastic configuration, the smooth plastic, and the
+/// modified Phong at [`PHONG_EXPONENTS`] (lobe mixture, rotation to the mirror
+/// direction and below-horizon rejection; issue 18).
 /// `white` makes them white (Fresnel 1 conductors, unit diffuse albedo) for furnaces.
 pub fn cases(white: bool) -> Vec<Case> {
     let metal = if white {
@@ -77,12 +82,33 @@ pub fn cases(white: bool) -> Vec<Case> {
         material: Material::Plastic(Plastic::new(params).expect("valid")),
         alpha: 0.0,
     });
+    list.extend(PHONG_EXPONENTS.map(|n| phong_case(n, white)));
     list.push(Case {
         name: "conductor".into(),
         material: Material::Conductor(Conductor::from_material(metal)),
         alpha: 0.0,
     });
     list
+}
+
+/// Modified Phong with exponent `n`; white means kd + ks = 1. Its `alpha` is the
+/// Beckmann roughness of the same lobe width, √(2/(n + 2)) (Walter et al. 2007, §5.2),
+/// so the table picks caps and quadrature nodes as tight as the lobe.
+fn phong_case(n: f32, white: bool) -> Case {
+    let (kd, ks) = if white {
+        (Spectrum::splat(0.4), Spectrum::splat(0.6))
+    } else {
+        (Spectrum::new(0.1, 0.3, 0.2), Spectrum::new(0.6, 0.5, 0.4))
+    };
+    Case {
+        name: format!("phong-{n}"),
+        material: Material::Phong(Phong {
+            kd,
+            ks,
+            exponent: n,
+        }),
+        alpha: (2.0 / (n + 2.0)).sqrt(),
+    }
 }
 
 /// ∫ g(w_in) dω_in over the hemisphere, taken over half vectors h (w_in = reflect(w_out, h),

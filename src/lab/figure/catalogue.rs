@@ -1,6 +1,7 @@
 //! The catalogue of the lecture's figures: scenes and labelled strategy flags, as data.
 
 use super::{Figure, FigureKind, Panel};
+use crate::lab::insets::Inset;
 
 const LIGHT_REF: &str = "--estimator mis";
 
@@ -26,6 +27,47 @@ pub const FIGURES: &[Figure] = &[
             spp: 16,
             reference: LIGHT_REF,
             reference_spp: 1024,
+            insets: &[],
+        }]),
+    },
+    Figure {
+        name: "theta-phi-bias",
+        description: "the lecture's 1st try: uniform (θ, φ) with the weight 2π of uniform directions is biased (too bright where light comes from near the normal); uniform (z, φ) is not",
+        kind: FigureKind::Panels(&[Panel {
+            title: "theta-phi-bias",
+            scene: "builtin:assignment",
+            strategies: &[
+                ("theta-phi weight 2pi", "--estimator hemisphere-theta-phi"),
+                ("z-phi weight 2pi", "--estimator hemisphere"),
+            ],
+            spp: 256,
+            reference: LIGHT_REF,
+            reference_spp: 256,
+            insets: &[],
+        }]),
+    },
+    Figure {
+        name: "variance-sources",
+        description: "the lecture's sources of variance in direct lighting, region by region: (1) a glossy lobe, (2) floor lit by a close light, (3) a shadow boundary, (4) open floor; relMSE per region for every estimator at 16 spp",
+        kind: FigureKind::Panels(&[Panel {
+            title: "variance-sources",
+            scene: "builtin:variance-sources",
+            strategies: &[
+                ("uniform hemisphere", "--estimator hemisphere"),
+                ("cosine", "--estimator cosine"),
+                ("BRDF", "--estimator bsdf"),
+                ("light", "--estimator light"),
+                ("MIS", "--estimator mis"),
+            ],
+            spp: 16,
+            reference: LIGHT_REF,
+            reference_spp: 1024,
+            insets: &[
+                region(165, 95, 56, 44),
+                region(290, 175, 64, 30),
+                region(10, 172, 60, 32),
+                region(120, 215, 60, 30),
+            ],
         }]),
     },
     Figure {
@@ -33,7 +75,9 @@ pub const FIGURES: &[Figure] = &[
         description: "a spherical light near a plane: p1 area, p2 visible area, p3 solid angle, p4 ∝ G",
         kind: FigureKind::Panels(&[Panel {
             title: "sphere-light",
-            scene: "builtin:sphere-near-plane",
+            // Only the sphere: p₂ and p₄ exist only for spheres, and the full scene's
+            // rectangle and triangles would be refused (issue 18).
+            scene: "builtin:sphere-near-plane?emitters=sphere",
             strategies: &[
                 ("p1 area", "--estimator light --light-sampling area"),
                 (
@@ -52,6 +96,7 @@ pub const FIGURES: &[Figure] = &[
             spp: 16,
             reference: "--estimator mis --light-sampling solid-angle",
             reference_spp: 1024,
+            insets: &[],
         }]),
     },
     Figure {
@@ -62,6 +107,51 @@ pub const FIGURES: &[Figure] = &[
             shape_panel("triangle", "builtin:sphere-near-plane?emitters=mesh"),
             shape_panel("polygon", "builtin:sphere-near-plane?emitters=polygon"),
         ]),
+    },
+    Figure {
+        name: "horizon",
+        description: "lights below the horizon: uniform area sampling of Veach's four sphere lights from his tilted plates, with and without rejecting samples below the shading point's horizon before the shadow ray; equal images, fewer shadow rays (see the notes), less time",
+        kind: FigureKind::Panels(&[Panel {
+            title: "horizon",
+            scene: "builtin:veach-mis",
+            strategies: &[
+                (
+                    "rejection on",
+                    "--estimator light --light-sampling area --horizon-rejection on",
+                ),
+                (
+                    "rejection off",
+                    "--estimator light --light-sampling area --horizon-rejection off",
+                ),
+            ],
+            spp: 64,
+            reference: LIGHT_REF,
+            reference_spp: 256,
+            insets: &[],
+        }]),
+    },
+    Figure {
+        name: "rectangle-strategies",
+        description: "a rectangle light standing almost edge-on over a plane: p1 uniform area (horizon rejection) vs solid angle (Ureña et al. 2013) vs solid angle after a bilinear cos θ warp (Hart et al. 2020, an approximation of p3 ∝ G; exact projected solid angle is not implemented for planar lights)",
+        kind: FigureKind::Panels(&[Panel {
+            title: "rectangle-strategies",
+            scene: "builtin:sphere-near-plane?emitters=rectangle",
+            strategies: &[
+                ("p1 area", "--estimator light --light-sampling area"),
+                (
+                    "solid angle",
+                    "--estimator light --light-sampling solid-angle",
+                ),
+                (
+                    "solid angle, cos-warped",
+                    "--estimator light --light-sampling solid-angle-cos",
+                ),
+            ],
+            spp: 16,
+            reference: "--estimator mis --light-sampling solid-angle",
+            reference_spp: 1024,
+            insets: &[],
+        }]),
     },
     Figure {
         name: "many-lights",
@@ -78,6 +168,7 @@ pub const FIGURES: &[Figure] = &[
             spp: 49,
             reference: "--estimator mis --light-select bvh",
             reference_spp: 2048,
+            insets: &[],
         }]),
     },
     Figure {
@@ -94,6 +185,7 @@ pub const FIGURES: &[Figure] = &[
             spp: 16,
             reference: "--estimator mis",
             reference_spp: 1024,
+            insets: &[],
         }]),
     },
     Figure {
@@ -111,6 +203,7 @@ pub const FIGURES: &[Figure] = &[
             spp: 16,
             reference: "--estimator mis",
             reference_spp: 1024,
+            insets: &[],
         }]),
     },
     Figure {
@@ -122,6 +215,11 @@ pub const FIGURES: &[Figure] = &[
         ]),
     },
 ];
+
+/// A region of the 384 × 256 image.
+const fn region(x: u32, y: u32, w: u32, h: u32) -> Inset {
+    Inset { x, y, w, h }
+}
 
 const fn shape_panel(title: &'static str, scene: &'static str) -> Panel {
     Panel {
@@ -137,6 +235,7 @@ const fn shape_panel(title: &'static str, scene: &'static str) -> Panel {
         spp: 16,
         reference: "--estimator mis --light-sampling solid-angle",
         reference_spp: 1024,
+        insets: &[],
     }
 }
 
@@ -162,5 +261,6 @@ const fn ris_panel(title: &'static str, scene: &'static str) -> Panel {
         spp: 16,
         reference: "--estimator mis --light-select bvh",
         reference_spp: 1024,
+        insets: &[],
     }
 }

@@ -11,6 +11,7 @@ use crate::lab::budget::Budget;
 use crate::lab::compare::{CompareConfig, StrategyResult, run_compare};
 use crate::lab::converge::{ConvergeConfig, run_converge};
 use crate::lab::experiment::{ReferenceSource, load_scene, resolve};
+use crate::lab::insets::Inset;
 use crate::lab::report::{Report, Table, command_line, write_report, write_text};
 use crate::lab::strategy::{Strategy, slug};
 use crate::settings::RenderPatch;
@@ -36,6 +37,8 @@ pub struct Panel {
     pub reference: &'static str,
     /// Reference spp.
     pub reference_spp: u32,
+    /// Regions to magnify and measure (empty: the two of highest error).
+    pub insets: &'static [Inset],
 }
 
 /// What a figure computes.
@@ -150,7 +153,7 @@ pub fn plan(figure: &Figure, options: &FigureOptions) -> Result<Vec<CompareConfi
                 strategy: reference,
                 spp: options.reference_spp.unwrap_or(panel.reference_spp),
             },
-            insets: vec![],
+            insets: panel.insets.to_vec(),
             title: Some(if panels.len() == 1 {
                 format!("figure {}", figure.name)
             } else {
@@ -172,7 +175,7 @@ pub fn run_figure(
     log: &dyn Fn(&str),
 ) -> Result<Vec<(String, Vec<StrategyResult>)>, LabError> {
     if let FigureKind::Variance1d = figure.kind {
-        write_variance_1d(figure, dir)?;
+        write_variance_1d(figure, options.base.seed, dir)?;
         return Ok(vec![]);
     }
     let configs = plan(figure, options)?;

@@ -13,9 +13,12 @@ use crate::lab::variance_1d::variance_table;
 /// Samples per strategy in the 1D table.
 const VARIANCE_1D_SAMPLES: usize = 100_000;
 
-/// Writes the figure's report into `dir`.
-pub fn write_variance_1d(figure: &Figure, dir: &Path) -> Result<(), LabError> {
-    let seed = 1;
+/// Seed of the table when `--seed` is not given.
+const DEFAULT_SEED: u64 = 1;
+
+/// Writes the figure's report into `dir`, drawing from `seed` (`--seed`, default 1).
+pub fn write_variance_1d(figure: &Figure, seed: Option<u64>, dir: &Path) -> Result<(), LabError> {
+    let seed = seed.unwrap_or(DEFAULT_SEED);
     let rows = variance_table(VARIANCE_1D_SAMPLES, seed);
     let table = Table {
         caption: format!(

@@ -11,9 +11,11 @@ mod disk;
 mod rectangle;
 mod sphere;
 mod sphere_geometric;
+mod strategies;
 mod triangle;
 
 pub(crate) use cosine_warp::{pdf as warped_pdf, sample as warped_sample};
+pub use strategies::{EmitterKind, UnsupportedSampling, check_sampling, sampling_summary};
 pub(crate) use triangle::{cosine_weights, safe_spherical_triangle};
 
 use glam::{Vec2, Vec3};
@@ -23,59 +25,6 @@ use crate::geometry::Shape;
 use crate::math::{PI, Spectrum, spectrum::luminance};
 
 pub use crate::settings::LightSampling;
-
-/// The kinds of emitting shape, for resolving a strategy name per shape.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum EmitterKind {
-    /// A sphere.
-    Sphere,
-    /// A rectangle.
-    Rectangle,
-    /// A triangle (also each triangle of an emitting mesh).
-    Triangle,
-    /// A disk.
-    Disk,
-    /// A planar polygon.
-    Polygon,
-}
-
-impl EmitterKind {
-    /// The kind of an area light's shape.
-    pub fn of(shape: &Shape) -> EmitterKind {
-        match shape {
-            Shape::Sphere(_) => EmitterKind::Sphere,
-            Shape::Rectangle(_) => EmitterKind::Rectangle,
-            Shape::Triangle(_) => EmitterKind::Triangle,
-            Shape::Disk(_) => EmitterKind::Disk,
-        }
-    }
-}
-
-impl LightSampling {
-    /// The strategy actually used on a shape of kind `kind`: the shape's own strategy of
-    /// that name, `area` where the shape has none, and for `best` solid angle on every
-    /// shape that has it (disks have only `area`). Measured on `sphere-near-plane`, one
-    /// emitter at a time, relMSE at 16 spp (light estimator; `examples/light_strategies.rs`):
-    /// sphere area 2.6e-2, visible-area 3.7e-4, solid-angle 1.0e-4, geometric 6.4e-5;
-    /// rectangle area 2.4e-2, solid-angle 2.6e-4; mesh 1.9e-3 vs 6.0e-4; polygon 1.2e-2 vs
-    /// 1.2e-4. On spheres `geometric` is lower still but costs 6.5× as much per sample
-    /// (775 vs 118 ns), which more than eats its 1.6× gain, so `best` is solid angle.
-    pub fn resolve(self, kind: EmitterKind) -> LightSampling {
-        use LightSampling::*;
-        match (self, kind) {
-            (Best, EmitterKind::Disk) => Area,
-            (Best, _) => SolidAngle,
-            (Area, _) => Area,
-            (VisibleArea | Geometric, EmitterKind::Sphere) => self,
-            (SolidAngle | SolidAngleCos, EmitterKind::Disk) => Area,
-            (SolidAngle, _) => SolidAngle,
-            // The cone of a sphere has no square corners to weight: uniform in it.
-            (SolidAngleCos, EmitterKind::Sphere) => SolidAngle,
-            (SolidAngleCos, _) => SolidAngleCos,
-            (VisibleArea | Geometric, _) => Area,
-        }
-    }
-}
 
 /// A diffuse emitter of constant radiance on one shape (a mesh emits as one light per
 /// triangle).
@@ -166,6 +115,19 @@ impl AreaLight {
         u: Vec2,
         sampling: LightSampling,
     ) -> Option<LightSample> {
+        self.sample_with(at, u, sampling, true)
+    }
+
+    /// [`AreaLight::sample`], keeping samples below the horizon of `at` (for the
+    /// estimator to score zero after its shadow ray) unless `reject_below_horizon`.
+    #[inline]
+    pub fn sample_with(
+        &self,
+        at: &ShadingPoint,
+        u: Vec2,
+        sampling: LightSampling,
+        reject_below_horizon: bool,
+    ) -> Option<LightSample> {
         let strategy = self.strategy(sampling);
         let point = match &self.shape {
             Shape::Sphere(s) => sphere::sample(s, strategy, at, u),
@@ -173,7 +135,7 @@ impl AreaLight {
             Shape::Triangle(t) => triangle::sample(t, strategy, at, u),
             Shape::Disk(d) => disk::sample(d, at, u),
         }?;
-        light_sample(at, point, |ny, w| self.emitted(ny, w))
+        light_sample(at, point, reject_below_horizon, |ny, w| self.emitted(ny, w))
     }
 
     /// Density per steradian at `at` of choosing the direction towards `y` (a point on
@@ -191,12 +153,14 @@ impl AreaLight {
 }
 
 /// Turns a point drawn on a light into a [`LightSample`] at `at`, or `None` when it
-/// carries no light: below the horizon of `at`, emitting away from `at`
+/// carries no light: below the horizon of `at` (if `reject_below_horizon`; lecture:
+/// check cos θ₁ < 0 before evaluating visibility), emitting away from `at`
 /// (`emitted(ny, −w_in)` is zero), or a degenerate density.
 #[inline]
 pub(crate) fn light_sample(
     at: &ShadingPoint,
     point: LightPoint,
+    reject_below_horizon: bool,
     emitted: impl Fn(Vec3, Vec3) -> Spectrum,
 ) -> Option<LightSample> {
     let LightPoint { y, ny, pdf } = point;
@@ -208,7 +172,7 @@ pub(crate) fn light_sample(
     let distance = dist2.sqrt();
     let w_in = d / distance;
     let radiance = emitted(ny, -w_in);
-    if at.n.dot(w_in) <= 0.0 || radiance == Spectrum::ZERO {
+    if (reject_below_horizon && at.n.dot(w_in) <= 0.0) || radiance == Spectrum::ZERO {
         return None;
     }
     (pdf > 0.0 && pdf.is_finite()).then_some(LightSample {

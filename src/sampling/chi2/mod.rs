@@ -65,8 +65,11 @@ pub struct Chi2Report {
     pub observed: Vec<f64>,
     /// Expected samples per cell: N × (pdf integrated over the cell).
     pub expected: Vec<f64>,
-    /// Samples that fell outside the domain, and the number expected there.
+    /// Samples that fell outside the domain, and the number expected there: |N − Σ
+    /// expected| (the mass the pdf leaves out of the domain, or claims beyond N).
     pub outside: (f64, f64),
+    /// Expected samples the quadrature could not place (its unresolved mass × N).
+    pub unresolved: f64,
     /// Pearson's statistic Σ (O − E)²/E over the pooled cells.
     pub statistic: f64,
     /// Degrees of freedom: pooled cells − 1.
@@ -87,8 +90,8 @@ impl Chi2Report {
     pub fn tables(&self) -> String {
         let [nx, ny] = self.resolution;
         let mut out = format!(
-            "outside the domain: observed {}, expected {:.2}\n",
-            self.outside.0, self.outside.1
+            "outside the domain: observed {}, expected {:.2} (quadrature unresolved: {:.2})\n",
+            self.outside.0, self.outside.1, self.unresolved
         );
         for (title, grid) in [("observed", &self.observed), ("expected", &self.expected)] {
             out += &format!("{title} ({nx} x {ny}):\n");
@@ -109,8 +112,11 @@ pub fn integrate_pdf(
     pdf: &dyn Fn(Vec3) -> f32,
     resolution: [usize; 2],
 ) -> Result<f64, String> {
-    Ok(cell_masses(domain, pdf, resolution, 1e-9)?.iter().sum())
+    Ok(cell_masses(domain, pdf, resolution, 1e-9)?.0.iter().sum())
 }
+
+/// Cell masses (row-major) and the mass the quadrature left unresolved in them.
+type Masses = (Vec<f64>, f64);
 
 /// The pdf's integral over each cell of a `resolution` grid (row-major), each to within
 /// `tolerance`.
@@ -119,7 +125,7 @@ fn cell_masses(
     pdf: &dyn Fn(Vec3) -> f32,
     resolution: [usize; 2],
     tolerance: f64,
-) -> Result<Vec<f64>, String> {
+) -> Result<Masses, String> {
     let [nx, ny] = resolution;
     block_masses(domain, pdf, resolution, (0..nx, 0..ny), tolerance)
 }
@@ -131,7 +137,7 @@ fn block_masses(
     [nx, ny]: [usize; 2],
     (columns, rows): (Range<usize>, Range<usize>),
     tolerance: f64,
-) -> Result<Vec<f64>, String> {
+) -> Result<Masses, String> {
     let measure = domain.measure();
     let f = |t: DVec2| {
         let x = domain.from_unit(t.as_vec2());
@@ -149,14 +155,17 @@ fn block_masses(
     };
     let cell = DVec2::new(1.0 / nx as f64, 1.0 / ny as f64);
     let mut masses = Vec::with_capacity(columns.len() * rows.len());
+    let mut unresolved = 0.0;
     for j in rows {
         for i in columns.clone() {
             let lo = cell * DVec2::new(i as f64, j as f64);
             let coarse = integrand.estimate(lo, lo + cell)?;
-            masses.push(integrand.integrate(lo, lo + cell, 1e-4 * coarse + tolerance)?);
+            let (mass, error) = integrand.integrate(lo, lo + cell, 1e-4 * coarse + tolerance)?;
+            masses.push(mass);
+            unresolved += error;
         }
     }
-    Ok(masses)
+    Ok((masses, unresolved))
 }
 
 /// The mass of cell `index` integrated as 32 × 32 sub-cells (32 × 1 in 1D), each refined
@@ -167,19 +176,19 @@ fn fine_cell_mass(
     [nx, ny]: [usize; 2],
     index: usize,
     tolerance: f64,
-) -> Result<f64, String> {
+) -> Result<(f64, f64), String> {
     const SPLIT: usize = 32;
     let rows = if ny == 1 { 1 } else { SPLIT };
     let (i, j) = (index % nx, index / nx);
     let block = (i * SPLIT..(i + 1) * SPLIT, j * rows..(j + 1) * rows);
-    let masses = block_masses(
+    let (masses, unresolved) = block_masses(
         domain,
         pdf,
         [nx * SPLIT, ny * rows],
         block,
         tolerance / (SPLIT * rows) as f64,
     )?;
-    Ok(masses.iter().sum())
+    Ok((masses.iter().sum(), unresolved))
 }
 
 /// Runs the test: `sample` draws (value, pdf) from an `Rng32` stream, `pdf` is the
@@ -197,12 +206,13 @@ pub fn chi2_test(
         observed: vec![0.0; nx * ny],
         expected: vec![0.0; nx * ny],
         outside: (0.0, 0.0),
+        unresolved: 0.0,
         statistic: 0.0,
         dof: 0,
         p_value: 0.0,
         failure: None,
     };
-    let masses = match cell_masses(domain, pdf, config.resolution, 0.01 / n) {
+    let (masses, mut unresolved) = match cell_masses(domain, pdf, config.resolution, 0.01 / n) {
         Ok(m) => m,
         Err(e) => return Report::fail(report, e),
     };
@@ -256,21 +266,28 @@ pub fn chi2_test(
                     );
                 }
                 _ => match fine_cell_mass(domain, pdf, config.resolution, index, 0.01 / n) {
-                    Ok(mass) => report.expected[index] = mass * n,
+                    Ok((mass, error)) => {
+                        report.expected[index] = mass * n;
+                        unresolved += error;
+                    }
                     Err(e) => return Report::fail(report, e),
                 },
             }
         }
     }
     // The outside bin takes the mass the cells miss (recomputed: cells integrated again
-    // above hold mass the first pass gave to it); below 10⁻³ of the total that is
-    // quadrature error at singularities and edges rather than support, and it is dropped.
-    report.outside.1 = (n - report.expected.iter().sum::<f64>()).max(0.0);
-    if report.outside.1 < 1e-3 * n {
-        report.outside.1 = 0.0;
-    }
+    // above hold mass the first pass gave to it), however small (issue 18): a pdf that
+    // integrates to 0.999 or 1.001 fails at 10⁵ samples. Only what the quadrature itself
+    // reports unresolved (integrable singularities such as 1/sin θ at the pole, support
+    // edges), three times over (the midpoint rule's error at a 1/√x edge is 2.4 times
+    // its last change), is forgiven. When the cells claim more than N samples the bin
+    // expects the surplus and sees only the samples outside, so the statistic grows by
+    // about the surplus.
+    let missing = n - report.expected.iter().sum::<f64>();
+    report.unresolved = unresolved * n;
+    report.outside.1 = (missing.abs() - 3.0 * report.unresolved).max(0.0);
     if report.outside.0 > 0.0
-        && report.outside.1 == 0.0
+        && missing < 1e-3 * n
         && let Some(x) = first[nx * ny].filter(|&x| pdf(x) == 0.0)
     {
         return Report::fail(

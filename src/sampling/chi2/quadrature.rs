@@ -29,8 +29,10 @@ impl Integrand<'_> {
     /// ∫ f dt over the box [lo, hi] (area in t, not yet times the domain's measure),
     /// refined until a subdivision changes it by less than `tolerance`. Boxes the edge
     /// of the support passes through are always refined to `max_depth`: there, coarse
-    /// and fine grids can agree while both miscount a thin strip.
-    pub fn integrate(&self, lo: DVec2, hi: DVec2, tolerance: f64) -> Result<f64, String> {
+    /// and fine grids can agree while both miscount a thin strip. Returns the integral
+    /// and the part left unresolved: Σ |fine − coarse| over the boxes that reached
+    /// `max_depth` without converging (an integrable singularity, a support edge).
+    pub fn integrate(&self, lo: DVec2, hi: DVec2, tolerance: f64) -> Result<(f64, f64), String> {
         let coarse = self.midpoints(lo, hi)?;
         self.refine(lo, hi, coarse, tolerance, self.max_depth)
     }
@@ -47,7 +49,7 @@ impl Integrand<'_> {
         coarse: Estimate,
         tolerance: f64,
         depth: u32,
-    ) -> Result<f64, String> {
+    ) -> Result<(f64, f64), String> {
         let children = self.split(lo, hi);
         let mut parts = Vec::with_capacity(children.len());
         for &(a, b) in &children {
@@ -58,14 +60,20 @@ impl Integrand<'_> {
         let edge = coarse.straddles_edge
             || parts.iter().any(|p| p.straddles_edge)
             || (any_zero && fine > 0.0);
-        if depth == 0 || (!edge && (fine - coarse.value).abs() <= tolerance) {
-            return Ok(fine);
+        let change = (fine - coarse.value).abs();
+        if !edge && change <= tolerance {
+            return Ok((fine, 0.0));
         }
-        let mut total = 0.0;
+        if depth == 0 {
+            return Ok((fine, change));
+        }
+        let (mut total, mut unresolved) = (0.0, 0.0);
         for (&(a, b), &part) in children.iter().zip(&parts) {
-            total += self.refine(a, b, part, 0.5 * tolerance, depth - 1)?;
+            let (value, error) = self.refine(a, b, part, 0.5 * tolerance, depth - 1)?;
+            total += value;
+            unresolved += error;
         }
-        Ok(total)
+        Ok((total, unresolved))
     }
 
     /// The box cut in half along each axis in use.

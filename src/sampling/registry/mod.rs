@@ -94,17 +94,30 @@ pub fn all() -> Vec<Entry> {
     entries
 }
 
-/// The entry called `name`, or an error listing the known names.
+/// A warp with a parameter in its name: `phong-N` (exponent 0 ≤ N ≤ 10⁵) or `cone-D`
+/// (half-angle 0 < D ≤ 180 degrees), at any value, not only the listed ones.
+fn parametrised(name: &str) -> Option<Entry> {
+    let (family, value) = name.rsplit_once('-')?;
+    let x: f32 = value.parse().ok().filter(|x: &f32| x.is_finite())?;
+    match family {
+        "phong" if (0.0..=1e5).contains(&x) => Some(warps::phong_entry(x)),
+        "cone" if x > 0.0 && x <= 180.0 => Some(warps::cone_entry(x)),
+        _ => None,
+    }
+}
+
+/// The entry called `name` (a parametrised `phong-N` or `cone-D` at any value), or an
+/// error listing the known names.
 pub fn find(name: &str) -> Result<Entry, String> {
     let mut entries = all();
-    match entries.iter().position(|e| e.name == name) {
-        Some(i) => Ok(entries.swap_remove(i)),
-        None => {
-            let names: Vec<String> = entries.into_iter().map(|e| e.name).collect();
-            Err(format!(
-                "unknown warp \"{name}\" (known: {})",
-                names.join(", ")
-            ))
-        }
+    if let Some(i) = entries.iter().position(|e| e.name == name) {
+        return Ok(entries.swap_remove(i));
     }
+    parametrised(name).ok_or_else(|| {
+        let names: Vec<String> = entries.into_iter().map(|e| e.name).collect();
+        format!(
+            "unknown warp \"{name}\" (known: {}; phong-N and cone-D take any exponent or angle)",
+            names.join(", ")
+        )
+    })
 }

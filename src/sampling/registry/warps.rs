@@ -194,37 +194,41 @@ const BILINEAR_TEST_WEIGHTS: [f32; 4] = [0.05, 1.0, 2.0, 0.5];
 
 fn lobe_entries() -> Vec<Entry> {
     let mut list = Vec::new();
-    for n in [1.0f32, 10.0, 100.0, 1000.0] {
-        // A cap holding all but 10⁻⁴ of the lobe: P(cos θ < z) = z^(n+1).
-        let z_min = if n < 50.0 {
-            0.0
-        } else {
-            1e-4f32.powf(1.0 / (n + 1.0))
-        };
-        let e = entry(
-            &format!("phong-{n}"),
-            &format!("Phong lobe cos^{n}: theta = arccos u0^(1/(n+1))"),
-            Domain::cap(Vec3::Z, z_min),
-            square(move |u| square_to_phong_lobe(u, n)),
-            boxed(move |w| phong_lobe_pdf(w, n)),
-        );
-        list.push(with_inverse(e, boxed(move |w| phong_lobe_to_square(w, n))));
-    }
-    for degrees in [1.0f32, 30.0, 90.0, 150.0] {
-        let cos_max = degrees.to_radians().cos();
-        let e = entry(
-            &format!("cone-{degrees}"),
-            &format!("uniform cone of half-angle {degrees} degrees"),
-            Domain::cap(Vec3::Z, cos_max),
-            square(move |u| square_to_uniform_cone(u, cos_max)),
-            boxed(move |w| uniform_cone_pdf(w, cos_max)),
-        );
-        list.push(with_inverse(
-            e,
-            boxed(move |w| uniform_cone_to_square(w, cos_max)),
-        ));
-    }
+    list.extend([1.0f32, 10.0, 100.0, 1000.0].map(phong_entry));
+    list.extend([1.0f32, 30.0, 90.0, 150.0].map(cone_entry));
     list
+}
+
+/// The Phong lobe cosⁿ θ (`phong-N`, any exponent n ≥ 0: `lightlab warp phong-37`).
+pub(super) fn phong_entry(n: f32) -> Entry {
+    // A cap holding all but 10⁻⁴ of the lobe: P(cos θ < z) = z^(n+1).
+    let z_min = if n < 50.0 {
+        0.0
+    } else {
+        1e-4f32.powf(1.0 / (n + 1.0))
+    };
+    let e = entry(
+        &format!("phong-{n}"),
+        &format!("Phong lobe cos^{n}: theta = arccos u0^(1/(n+1))"),
+        Domain::cap(Vec3::Z, z_min),
+        square(move |u| square_to_phong_lobe(u, n)),
+        boxed(move |w| phong_lobe_pdf(w, n)),
+    );
+    with_inverse(e, boxed(move |w| phong_lobe_to_square(w, n)))
+}
+
+/// The uniform cone of half-angle `degrees` (`cone-D`, 0 < D ≤ 180: `lightlab warp
+/// cone-12`).
+pub(super) fn cone_entry(degrees: f32) -> Entry {
+    let cos_max = degrees.to_radians().cos();
+    let e = entry(
+        &format!("cone-{degrees}"),
+        &format!("uniform cone of half-angle {degrees} degrees"),
+        Domain::cap(Vec3::Z, cos_max),
+        square(move |u| square_to_uniform_cone(u, cos_max)),
+        boxed(move |w| uniform_cone_pdf(w, cos_max)),
+    );
+    with_inverse(e, boxed(move |w| uniform_cone_to_square(w, cos_max)))
 }
 
 fn planar_entries() -> Vec<Entry> {

@@ -6,6 +6,7 @@ mod materials;
 pub mod shirley100;
 pub mod sphere_near_plane;
 mod stage;
+mod variance_sources;
 mod veach_mis;
 
 use super::{Scene, SceneError};
@@ -51,6 +52,11 @@ pub const BUILTINS: &[Builtin] = &[
         name: "many-lights",
         description: "the shirley-100 generator with N luminaires: many-lights?n=N, 1 ≤ N ≤ 10⁶ (default 1000)",
         build: shirley100::build_default_many,
+    },
+    Builtin {
+        name: "variance-sources",
+        description: "the lecture's three sources of variance in one view: a glossy Phong sphere, a sphere light just above the floor, a shadow boundary under a floating ball",
+        build: variance_sources::build,
     },
     Builtin {
         name: "materials",
