@@ -203,6 +203,9 @@ mod tests {
             text.contains("geometric") && text.contains("rectangle"),
             "{text}"
         );
-        assert!(text.contains("area, solid-angle, best"), "{text}");
+        assert!(
+            text.contains("area, solid-angle, solid-angle-cos, best"),
+            "{text}"
+        );
     }
 }
