@@ -7,7 +7,9 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 
 use super::{CliError, StrategyArgs};
+use crate::image::Film;
 use crate::image::io::write_film;
+use crate::image::tev::TevDisplay;
 use crate::render::{Control, render};
 use crate::scene::{self, builtin::DEFAULT_SCENE};
 
@@ -25,6 +27,10 @@ pub struct RenderArgs {
     /// Worker threads (default: all cores). The image is the same for any count.
     #[arg(long)]
     pub threads: Option<usize>,
+    /// Show the image in a running tev viewer (`HOST:PORT`, tev's default is
+    /// 127.0.0.1:14158) after every round.
+    #[arg(long, value_name = "HOST:PORT")]
+    pub display_server: Option<String>,
     /// PNG exposure in stops (the image is scaled by 2^exposure).
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub exposure: f32,
@@ -68,6 +74,15 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
     let (first, last) = settings.pass.sample_range(settings.spp);
     let bar = progress_bar((last - first) as u64 * (camera.width * camera.height) as u64);
     let progress = |done: u64, _total: u64| bar.set_position(done);
+    let display = args
+        .display_server
+        .as_deref()
+        .and_then(|a| TevDisplay::connect(a, &scene.name, camera.width, camera.height));
+    let frame = |film: &Film| {
+        if let Some(d) = &display {
+            d.send(&scene.name, film);
+        }
+    };
     let out = pool.install(|| {
         render(
             &scene,
@@ -75,10 +90,14 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
             &Control {
                 progress: &progress,
                 stop: &STOP,
+                frame: Some(&frame),
             },
         )
     });
     bar.finish_and_clear();
+    if let Some(d) = display {
+        d.finish(&scene.name, &out.film);
+    }
     write_film(&out.film, &args.output, args.exposure).map_err(CliError::failure)?;
     let samples = out.spp as f64 * (camera.width * camera.height) as f64;
     eprintln!(

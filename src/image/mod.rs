@@ -1,10 +1,12 @@
 //! Images: the film that accumulates samples (count, mean, running variance), file
-//! input/output (EXR with variance, PNG, PFM), and error metrics against a reference.
+//! input/output (EXR with variance, PNG, PFM), error metrics against a reference, and a
+//! live view in the tev viewer.
 
 pub mod film;
 pub mod filter;
 pub mod io;
 pub mod metrics;
+pub mod tev;
 
 pub use film::{Film, PixelStats};
 pub use filter::Filter;

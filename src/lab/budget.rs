@@ -56,6 +56,7 @@ pub fn render_budget(
     let control = Control {
         progress: &|_, _| {},
         stop,
+        frame: None,
     };
     match budget {
         Budget::Spp(n) => {
@@ -84,6 +85,7 @@ fn render_timed(
     let timed = Control {
         progress: control.progress,
         stop: &deadline,
+        frame: control.frame,
     };
     let out = std::thread::scope(|scope| {
         scope.spawn(|| {
