@@ -14,6 +14,7 @@ temporary folder named by that hash. A task lost with its worker is run again (D
 
 import hashlib
 import os
+import re
 import tempfile
 
 import lightlab
@@ -42,20 +43,32 @@ def _split_spec(spec):
 
 
 def _folder_files(xml_path):
-    """The files to ship with ``xml_path``, relative to its folder."""
+    """The files to ship with ``xml_path``, relative to its folder: all of them while the
+    folder is small, else the XML and the files it names in ``value``/``filename``
+    attributes (a name built from ``$parameters`` is not seen then)."""
     root = os.path.dirname(os.path.abspath(xml_path))
     files, total = [], 0
     for folder, _, names in os.walk(root):
         for name in names:
             path = os.path.join(folder, name)
-            files.append(os.path.relpath(path, root))
             total += os.path.getsize(path)
-    if total <= WHOLE_FOLDER_BYTES:
-        return root, files
+            if total > WHOLE_FOLDER_BYTES:
+                return root, _named_files(xml_path, root)
+            files.append(os.path.relpath(path, root))
+    return root, files
+
+
+def _named_files(xml_path, root):
     with open(xml_path, encoding="utf-8", errors="replace") as f:
-        text = f.read()
-    named = [p for p in files if p.replace(os.sep, "/") in text or p in text]
-    return root, named
+        values = re.findall(r'(?:value|filename)\s*=\s*"([^"]+)"', f.read())
+    named = {os.path.normpath(v) for v in values if os.path.isfile(os.path.join(root, v))}
+    return sorted(named | {os.path.basename(xml_path)})
+
+
+def _inside(name):
+    """True for a relative path that stays inside its folder."""
+    parts = name.split("/")
+    return not os.path.isabs(name) and ".." not in parts and name not in ("", ".")
 
 
 def scene_payload(scene):
@@ -68,27 +81,37 @@ def scene_payload(scene):
     path, query = _split_spec(spec)
     root, names = _folder_files(path)
     files = {}
-    digest = hashlib.sha256()
-    for name in sorted(names):
-        with open(os.path.join(root, name), "rb") as f:
-            data = f.read()
-        files[name.replace(os.sep, "/")] = data
-        digest.update(name.encode() + b"\0" + len(data).to_bytes(8, "little") + data)
     xml = os.path.relpath(os.path.abspath(path), root).replace(os.sep, "/")
-    files.setdefault(xml, open(path, "rb").read())
-    return {"xml": xml, "query": query, "files": files, "sha256": digest.hexdigest()}
+    for name in sorted({n.replace(os.sep, "/") for n in names} | {xml}):
+        if _inside(name):  # a file outside the scene's folder is not shipped
+            with open(os.path.join(root, *name.split("/")), "rb") as f:
+                files[name] = f.read()
+    return {"xml": xml, "query": query, "files": files, "sha256": _digest(files)}
+
+
+def _digest(files):
+    """SHA-256 over the files' names, lengths and bytes, in name order."""
+    digest = hashlib.sha256()
+    for name in sorted(files):
+        data = files[name]
+        digest.update(name.encode() + b"\0" + len(data).to_bytes(8, "little") + data)
+    return digest.hexdigest()
 
 
 def materialize(payload):
     """The scene spec on this machine: writes the payload's files once into
-    ``<tmp>/lightlab-scenes/<sha256>/`` (checked against the hash) and names the XML."""
+    ``<tmp>/lightlab-scenes/<sha256>/`` (after checking them against the hash) and names the XML."""
     if isinstance(payload, str):
         return payload
     home = os.path.join(tempfile.gettempdir(), "lightlab-scenes", payload["sha256"])
     if not os.path.isdir(home):
+        if _digest(payload["files"]) != payload["sha256"]:
+            raise ValueError("scene payload does not match its SHA-256")
         os.makedirs(os.path.dirname(home), exist_ok=True)
         staging = tempfile.mkdtemp(prefix="incoming-", dir=os.path.dirname(home))
         for name, data in payload["files"].items():
+            if not _inside(name):
+                raise ValueError(f"scene payload file {name!r} leaves its folder")
             target = os.path.join(staging, *name.split("/"))
             os.makedirs(os.path.dirname(target), exist_ok=True)
             with open(target, "wb") as f:

@@ -37,6 +37,20 @@ def test_scene_files_travel_by_content(mesh_scene, tmp_path):
     assert ld.scene_payload("builtin:assignment") == "builtin:assignment"
 
 
+def test_a_large_folder_ships_only_the_files_the_scene_names(mesh_scene, monkeypatch):
+    (mesh_scene.parent / "unrelated.bin").write_bytes(b"x" * 100)
+    (mesh_scene.parent.parent / "outside.obj").write_bytes(b"v 0 0 0\n")
+    text = mesh_scene.read_text().replace("</scene>", '<!-- value="../outside.obj" --></scene>')
+    mesh_scene.write_text(text)
+    assert "unrelated.bin" in ld.scene_payload(mesh_scene)["files"]
+    monkeypatch.setattr(ld, "WHOLE_FOLDER_BYTES", 10)
+    payload = ld.scene_payload(mesh_scene)
+    assert set(payload["files"]) == {"mesh_obj.xml", "meshes/torus.obj"}
+    payload["files"]["meshes/torus.obj"] += b"# changed\n"
+    with pytest.raises(ValueError, match="does not match its SHA-256"):
+        ld.materialize(payload)
+
+
 def test_distributed_render_equals_the_single_render(client, mesh_scene):
     single = lightlab.render(mesh_scene, spp=12, seed=5, **SIZE)
     merged = ld.render(mesh_scene, spp=12, parts=3, client=client, seed=5, **SIZE)
