@@ -8,8 +8,10 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use super::args::SceneFileArgs;
 use super::{CliError, StrategyArgs};
+use crate::image::Film;
 use crate::image::io::write_film_with_metadata;
 use crate::image::output::check_output;
+use crate::image::tev::TevDisplay;
 use crate::lab::budget::{Budget, render_budget};
 use crate::render::{Control, RenderSettings};
 use crate::scene::builtin::DEFAULT_SCENE;
@@ -31,6 +33,10 @@ pub struct RenderArgs {
     /// Worker threads (default: all cores). The image is the same for any count.
     #[arg(long)]
     pub threads: Option<usize>,
+    /// Show the image in a running tev viewer (`HOST:PORT`, tev's default is
+    /// 127.0.0.1:14158) after every round.
+    #[arg(long, value_name = "HOST:PORT")]
+    pub display_server: Option<String>,
     /// PNG exposure in stops (the image is scaled by 2^exposure).
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub exposure: f32,
@@ -129,12 +135,25 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
         Budget::Time(t) => t.as_millis() as u64,
     });
     let progress = |done: u64, _total: u64| bar.set_position(done);
+    let display = args
+        .display_server
+        .as_deref()
+        .and_then(|a| TevDisplay::connect(a, &scene.name, camera.width, camera.height));
+    let frame = |film: &Film| {
+        if let Some(d) = &display {
+            d.send(&scene.name, film);
+        }
+    };
     let control = Control {
         progress: &progress,
         stop: &STOP,
+        frame: Some(&frame),
     };
     let out = pool.install(|| render_budget(&scene, &settings, budget, &control));
     bar.finish_and_clear();
+    if let Some(d) = display {
+        d.finish(&scene.name, &out.film);
+    }
     // An interrupted render still writes its whole rounds, and says so in an EXR header.
     let partial = format!("stopped by Ctrl-C at {} of {} spp", out.spp, last - first);
     let metadata: Vec<(String, String)> = out

@@ -110,6 +110,7 @@ pub fn run_compare(
         let control = Control {
             progress: &|_, _| {},
             stop,
+            frame: None,
         };
         let out = render_budget(&scene, s, config.budget, &control);
         let means = out.film.means();

@@ -112,6 +112,7 @@ pub fn render_reference(
     let control = Control {
         progress: &|_, _| {},
         stop,
+        frame: None,
     };
     let mut total: Option<RenderOutput> = None;
     let mut pass_spp = 4u32;

@@ -68,6 +68,8 @@ pub struct Control<'a> {
     pub progress: &'a (dyn Fn(u64, u64) + Sync),
     /// Set to stop after the current round.
     pub stop: &'a AtomicBool,
+    /// Called with the film after each round (a live view), when given.
+    pub frame: Option<&'a (dyn Fn(&Film) + Sync)>,
 }
 
 /// Renders `scene` with `settings`.
@@ -114,6 +116,9 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
         }
         done = s1;
         (control.progress)((s1 - first) as u64 * (w * h) as u64, total);
+        if let Some(frame) = control.frame {
+            frame(&film);
+        }
         if control.stop.load(Ordering::Relaxed) && s1 < last {
             stopped = true;
             break;
@@ -295,6 +300,7 @@ pub fn render_quiet(scene: &Scene, settings: &RenderSettings) -> RenderOutput {
         &Control {
             progress: &|_, _| {},
             stop: &stop,
+            frame: None,
         },
     )
 }

@@ -350,6 +350,7 @@ fn render_tiny(scene: &lightlab::scene::Scene) -> Outcome {
     let control = Control {
         progress: &|_, _| {},
         stop: &stop,
+        frame: None,
     };
     let out = render::render(scene, &settings, &control);
     match out.invalid_samples {
