@@ -83,6 +83,12 @@ impl PyRender {
         self.0.out.invalid_samples
     }
 
+    /// Shadow rays traced (light and MIS estimators).
+    #[getter]
+    fn shadow_rays(&self) -> u64 {
+        self.0.out.shadow_rays
+    }
+
     /// True when a stop request ended the render early.
     #[getter]
     fn stopped(&self) -> bool {

@@ -9,14 +9,14 @@ use lightlab::math::Spectrum;
 use lightlab::render::RenderOutput;
 use lightlab::settings::Pass;
 
-const MAGIC: &[u8; 4] = b"LLR1";
+const MAGIC: &[u8; 4] = b"LLR2";
 /// Bytes per pixel: count, mean (3), M2 (3), weight, weight², 4 bytes each.
 const PIXEL_BYTES: usize = 36;
 
 /// A render's output with what the Python result shows beside it.
 #[derive(Clone, Debug)]
 pub struct Rendered {
-    /// Film, spp, time, invalid samples, stopped.
+    /// Film, spp, time, invalid samples, stopped, shadow rays.
     pub out: RenderOutput,
     /// The canonical flags of the render.
     pub settings: String,
@@ -46,6 +46,7 @@ pub fn encode(r: &Rendered) -> Vec<u8> {
         b.extend(v.to_le_bytes());
     }
     b.extend(r.out.invalid_samples.to_le_bytes());
+    b.extend(r.out.shadow_rays.to_le_bytes());
     b.extend(r.out.time.as_secs_f64().to_le_bytes());
     b.push(r.out.stopped as u8);
     put_str(&mut b, &r.settings);
@@ -106,6 +107,7 @@ pub fn decode(bytes: &[u8]) -> Result<Rendered, String> {
         count: r.u32()?,
     };
     let invalid_samples = u64::from_le_bytes(r.take::<8>()?);
+    let shadow_rays = u64::from_le_bytes(r.take::<8>()?);
     let time = f64::from_le_bytes(r.take::<8>()?);
     let stopped = r.take::<1>()?[0] != 0;
     let (settings, scene) = (r.string()?, r.string()?);
@@ -137,6 +139,7 @@ pub fn decode(bytes: &[u8]) -> Result<Rendered, String> {
         spp,
         invalid_samples,
         stopped,
+        shadow_rays,
     };
     Ok(Rendered {
         out,

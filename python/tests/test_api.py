@@ -93,6 +93,7 @@ def test_results_pickle_exactly():
     back = pickle.loads(pickle.dumps(r))
     assert np.array_equal(back.image, r.image) and np.array_equal(back.variance, r.variance)
     assert (back.settings, back.spp, back.time) == (r.settings, r.spp, r.time)
+    assert back.shadow_rays == r.shadow_rays > 0
     with pytest.raises(ValueError, match="not a lightlab result"):
         lightlab._lightlab._result_from_state(b"nope")
 
