@@ -8,6 +8,7 @@ pub mod distribution;
 pub mod registry;
 pub mod rng;
 pub mod sampler;
+pub mod sobol;
 pub mod warp;
 
 pub use rng::Rng32;

@@ -38,6 +38,14 @@ impl Rng32 {
         }
     }
 
+    /// A fixed stream, for samplers that never draw from it (no hashing).
+    #[inline]
+    pub fn unused() -> Rng32 {
+        Rng32 {
+            pcg: Pcg32::new(0, 0),
+        }
+    }
+
     /// A uniform 32-bit integer.
     #[inline]
     pub fn next_u32(&mut self) -> u32 {

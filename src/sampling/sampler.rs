@@ -1,5 +1,6 @@
 //! Per-sample uniform number sources: `independent` (PCG32), `stratified` (jittered,
-//! dimensions decorrelated by permutation) and `sobol` (Owen-scrambled Sobol, Burley 2020).
+//! dimensions decorrelated by permutation) and `sobol` (Owen-scrambled Sobol, Burley 2020,
+//! computed by [`super::sobol`] bit for bit as the `sobol_burley` crate computes it).
 //!
 //! Every stream is derived from (seed, pixel, sample index) alone, so an image is the
 //! same whatever the thread count or the split into passes.
@@ -7,6 +8,7 @@
 use glam::Vec2;
 
 use super::rng::{Rng32, hash_words, mix64};
+use super::sobol::{sobol_1d, sobol_2d};
 
 /// A source of uniform numbers in [0, 1). Rejection samplers draw from one of these.
 pub trait Uniform {
@@ -63,7 +65,13 @@ impl Sampler {
             sample_index,
             spp: spp.max(1),
             dimension: 0,
-            rng: Rng32::new(hash_words(&[pixel_key, sample_index as u64])),
+            // Sobol points draw nothing from the PCG stream: skip its three hashes
+            // (a quarter of the set-up cost of a sample).
+            rng: if kind == SamplerKind::Sobol {
+                Rng32::unused()
+            } else {
+                Rng32::new(hash_words(&[pixel_key, sample_index as u64]))
+            },
         }
     }
 
@@ -100,7 +108,7 @@ impl Uniform for Sampler {
                 // Padding by reseeding (Burley 2020 §4): dimension 0 of a fresh
                 // shuffled, scrambled sequence for every 1D request.
                 let seed = self.dimension_key() as u32;
-                sobol_burley::sample(self.sample_index, 0, seed)
+                sobol_1d(self.sample_index, seed)
             }
         }
     }
@@ -118,10 +126,7 @@ impl Uniform for Sampler {
                 // Dimensions 0 and 1 of Sobol form a (0,2)-sequence: every 2D request
                 // uses that pair under its own seed.
                 let seed = self.dimension_key() as u32;
-                Vec2::new(
-                    sobol_burley::sample(self.sample_index, 0, seed),
-                    sobol_burley::sample(self.sample_index, 1, seed),
-                )
+                sobol_2d(self.sample_index, seed)
             }
         }
     }

@@ -21,30 +21,39 @@ struct Extent {
     z0: f64,
 }
 
-/// The angles of paper eq. (2)–(4): solid angle S, k = 2π − γ₂ − γ₃, and b0, b1 (the z
-/// components of the normals of the planes through the origin and edges x = x0, x = x1).
+/// The angles of paper eq. (2)–(4): solid angle S, k = 2π − γ₂ − γ₃, b0, b1 (the z
+/// components of the normals of the planes through the origin and edges y = y0, y = y1)
+/// and c = 1 − b0².
 struct Angles {
     solid_angle: f64,
     k: f64,
     b0: f64,
     b1: f64,
+    c: f64,
 }
 
 impl Extent {
+    /// Paper eq. (2)–(4) with the normals written out: n0 = (0, z0, −y0)/r_y0,
+    /// n1 = (−z0, 0, x1)/r_x1, n2 = (0, −z0, y1)/r_y1, n3 = (z0, 0, −x0)/r_x0 with
+    /// r_t = √(z0² + t²), so that −nᵢ·nᵢ₊₁ is one product over two of the four radii
+    /// (no vector normalisation).
     fn angles(&self) -> Angles {
         let Extent { x0, x1, y0, y1, z0 } = *self;
-        let n0 = DVec3::new(0.0, z0, -y0).normalize();
-        let n1 = DVec3::new(-z0, 0.0, x1).normalize();
-        let n2 = DVec3::new(0.0, -z0, y1).normalize();
-        let n3 = DVec3::new(z0, 0.0, -x0).normalize();
-        let gamma = |m: DVec3, n: DVec3| (-m.dot(n)).clamp(-1.0, 1.0).acos();
-        let (g0, g1, g2, g3) = (gamma(n0, n1), gamma(n1, n2), gamma(n2, n3), gamma(n3, n0));
+        let z2 = z0 * z0;
+        let (rx0, rx1) = ((z2 + x0 * x0).sqrt(), (z2 + x1 * x1).sqrt());
+        let (ry0, ry1) = ((z2 + y0 * y0).sqrt(), (z2 + y1 * y1).sqrt());
+        let gamma = |cos: f64| cos.clamp(-1.0, 1.0).acos();
+        let g0 = gamma(y0 * x1 / (ry0 * rx1));
+        let g1 = gamma(-(x1 * y1) / (rx1 * ry1));
+        let g2 = gamma(x0 * y1 / (ry1 * rx0));
+        let g3 = gamma(-(x0 * y0) / (rx0 * ry0));
         let k = TAU - g2 - g3;
         Angles {
             solid_angle: g0 + g1 - k,
             k,
-            b0: n0.z,
-            b1: n2.z,
+            b0: -y0 / ry0,
+            b1: y1 / ry1,
+            c: z2 / (ry0 * ry0),
         }
     }
 }
@@ -61,6 +70,8 @@ pub struct SphericalRectangle {
     angles_k: f64,
     b0: f64,
     b1: f64,
+    /// 1 − b0², computed as z0²/(z0² + y0²).
+    c: f64,
     solid_angle: f64,
 }
 
@@ -96,7 +107,7 @@ impl SphericalRectangle {
         if !(solid_angle >= MIN_SOLID_ANGLE && solid_angle.is_finite() && z0 < 0.0) {
             return None;
         }
-        let Angles { k, b0, b1, .. } = angles;
+        let Angles { k, b0, b1, c, .. } = angles;
         Some(SphericalRectangle {
             origin: p.as_dvec3(),
             x,
@@ -106,6 +117,7 @@ impl SphericalRectangle {
             angles_k: k,
             b0,
             b1,
+            c,
             solid_angle,
         })
     }
@@ -128,28 +140,29 @@ impl SphericalRectangle {
     /// ```
     pub fn sample(&self, u: Vec2) -> (Vec3, f32) {
         let Extent { x0, x1, y0, y1, z0 } = self.extent;
-        let au = u.x as f64 * self.solid_angle + self.angles_k;
-        let fu = (au.cos() * self.b0 - self.b1) / au.sin();
-        let cu = if fu.is_finite() {
-            (fu.signum() / (fu * fu + self.b0 * self.b0).sqrt()).clamp(-1.0, 1.0)
-        } else {
-            0.0
-        };
-        let xu = -(cu * z0) / (1.0 - cu * cu).max(1e-300).sqrt();
-        let xu = xu.clamp(x0, x1);
-        let d = (xu * xu + z0 * z0).sqrt();
-        let (h0, h1) = (y0 / (d * d + y0 * y0).sqrt(), y1 / (d * d + y1 * y1).sqrt());
+        // Algorithm 1: a_u = u₀S + k, f_u = (cos a_u·b0 − b1)/sin a_u,
+        // c_u = sign(f_u)/√(f_u² + b0²), x_u = −c_u·z0/√(1 − c_u²). Substituting,
+        // x_u = −z0·sign(n)·s/√(n² − (1 − b0²)·s²) with n = cos a_u·b0 − b1, s = sin a_u:
+        // one square root and one division instead of three of each, and s = 0 gives
+        // x_u = 0 as the paper's limit does. A vanishing denominator sends x_u to the
+        // edge it tends to (the clamp).
+        let (s, cos_au) = (u.x as f64 * self.solid_angle + self.angles_k).sin_cos();
+        let n = cos_au * self.b0 - self.b1;
+        let den = (n * n - self.c * s * s).max(1e-300).sqrt();
+        let xu = (-z0 * s / den).copysign(-z0 * s * n).clamp(x0, x1);
+        // y_v from h = y/√(d² + y²), uniform between h0 and h1.
+        let d2 = xu * xu + z0 * z0;
+        let (h0, h1) = (y0 / (d2 + y0 * y0).sqrt(), y1 / (d2 + y1 * y1).sqrt());
         let hv = h0 + u.y as f64 * (h1 - h0);
         let hv2 = hv * hv;
         let yv = if hv2 < 1.0 - 1e-12 {
-            (hv * d / (1.0 - hv2).sqrt()).clamp(y0, y1)
+            (hv * d2.sqrt() / (1.0 - hv2).sqrt()).clamp(y0, y1)
         } else {
             y1
         };
-        let w = (xu * self.x + yv * self.y + z0 * self.z)
-            .normalize()
-            .as_vec3();
-        (w, self.pdf(w))
+        // (x_u, y_v, z0) lies on the rectangle (both clamped), so the density is 1/S.
+        let w = (xu * self.x + yv * self.y + z0 * self.z) / (d2 + yv * yv).sqrt();
+        (w.as_vec3(), (1.0 / self.solid_angle) as f32)
     }
 
     /// The point (x, y) where direction w meets the rectangle's plane, in local
