@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 use flate2::Compression;
 use flate2::write::ZlibEncoder;
 use lightlab::image::Film;
-use lightlab::image::io::write_film;
+use lightlab::image::io::{write_film, write_film_with_metadata};
 use lightlab::math::Spectrum;
 
 /// Longest a case may run.
@@ -83,10 +83,31 @@ fn serialized(nv: u64, nt: u64) -> Vec<u8> {
 
 /// Writes the generated inputs into `dir`.
 fn generate(dir: &Path, scenes: &Path) {
-    let exr = |name: &str, f: &Film| write_film(f, &dir.join(name), 0.0).expect("write");
-    exr("ok4.exr", &film(4, false));
-    exr("ok8.exr", &film(8, false));
-    exr("zero4.exr", &film(4, true));
+    // Parts as `render` writes them: scene hash, settings and sample blocks in the header.
+    let part = |name: &str, size: u32, hash: &str, settings: &str, samples: &str| {
+        let meta: Vec<(String, String)> = [
+            ("lightlab.scene", "builtin:test"),
+            ("lightlab.scene_hash", hash),
+            ("lightlab.settings", settings),
+            ("lightlab.samples", samples),
+        ]
+        .iter()
+        .map(|(k, v)| (k.to_string(), v.to_string()))
+        .collect();
+        write_film_with_metadata(&film(size, false), &dir.join(name), 0.0, &meta).expect("write")
+    };
+    let (h, s) = ("00000000000000aa", "--estimator light");
+    part("ok4.exr", 4, h, s, "0:0..4");
+    part("ok8.exr", 8, h, s, "0:4..8");
+    part("pass2.exr", 4, h, s, "0:4..8");
+    part("overlap.exr", 4, h, s, "0:2..6");
+    part("other-seed.exr", 4, h, s, "1:0..4");
+    part("other-scene.exr", 4, "00000000000000bb", s, "0:4..8");
+    part("other-settings.exr", 4, h, "--estimator mis", "0:4..8");
+    part("bad-blocks.exr", 4, h, s, "0:4..eight");
+    part("self-overlap.exr", 4, h, s, "0:4..8 0:6..7");
+    write_film(&film(4, false), &dir.join("no-provenance.exr"), 0.0).expect("write");
+    write_film(&film(4, true), &dir.join("zero4.exr"), 0.0).expect("write");
     write_film(&film(4, false), &dir.join("ok4.pfm"), 0.0).expect("write");
     let ok = std::fs::read(dir.join("ok4.exr")).expect("read");
     let binary_ply = |n: u32| {

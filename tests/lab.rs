@@ -279,6 +279,64 @@ fn merged_passes_equal_the_whole_render() {
             assert!(close(va[i][c], vb[i][c], 1e-3), "variance at {i}");
         }
     }
+    // The merged file records every part's samples, so it merges on with a further seed
+    // but not with one of its own parts.
+    let merge = |parts: &[&Path], name: &str| {
+        Command::new(bin)
+            .arg("merge")
+            .args(parts)
+            .args(["-o", dir.join(name).to_str().unwrap()])
+            .output()
+            .unwrap()
+    };
+    let other_seed = dir.join("seed5.exr");
+    let out = Command::new(bin)
+        .args(flags(
+            "render builtin:assignment --width 40 --spp 10 --sampler stratified --seed 5",
+        ))
+        .args(["-o", other_seed.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let out = merge(&[&merged, &other_seed], "twenty.exr");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(read_image(&dir.join("twenty.exr")).unwrap().spp, Some(20));
+    let part1 = Path::new(&parts[0]);
+    let refused = |out: std::process::Output, words: &[&str]| {
+        let err = String::from_utf8_lossy(&out.stderr).to_string();
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        for w in words {
+            assert!(err.contains(w), "{w:?} not in {err}");
+        }
+    };
+    refused(
+        merge(&[&merged, part1], "x.exr"),
+        &["part1.exr", "overlap", "4:0..3"],
+    );
+    let half = dir.join("half.exr");
+    run(&["--pass", "1/2", "-o", half.to_str().unwrap()]);
+    refused(
+        merge(&[part1, &half], "x.exr"),
+        &["half.exr", "4:0..5 overlap samples 4:0..3"],
+    );
+    let other_scene = dir.join("veach.exr");
+    let height = a.height.to_string();
+    let out = Command::new(bin)
+        .args(flags(
+            "render builtin:veach-mis --width 40 --spp 10 --sampler stratified --seed 9",
+        ))
+        .args(["--height", &height, "-o", other_scene.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    refused(
+        merge(&[&whole, &other_scene], "x.exr"),
+        &["veach.exr", "scene_hash", "builtin:veach-mis"],
+    );
     // A part that is not a lightlab EXR is refused with a message, not a panic.
     let png = dir.join("x.png");
     run(&["-o", png.to_str().unwrap()]);

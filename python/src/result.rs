@@ -7,6 +7,7 @@ use std::time::Duration;
 use lightlab::image::Film;
 use lightlab::image::io::to_srgb8;
 use lightlab::image::tev::TevDisplay;
+use lightlab::lab::merge::overlapping;
 use lightlab::lab::reference::estimate_error;
 use lightlab::render::{Control, RenderOutput, RenderSettings, render as render_scene};
 use lightlab::settings::{Pass, RenderPatch};
@@ -231,12 +232,25 @@ pub fn merge(results: Vec<PyRef<'_, PyRender>>) -> PyResult<PyRender> {
     let (w, h) = (first.out.film.width, first.out.film.height);
     let mut total: Option<RenderOutput> = None;
     let mut time = Duration::ZERO;
-    for part in &parts {
+    for (i, part) in parts.iter().enumerate() {
         let f = &part.out.film;
         if (f.width, f.height) != (w, h) {
             return Err(PyValueError::new_err(format!(
                 "cannot merge a {}x{} result into {w}x{h} ones",
                 f.width, f.height
+            )));
+        }
+        // The same samples twice (a result given twice, or overlapping passes of one
+        // seed) would count them twice.
+        let have: Vec<_> = parts[..i]
+            .iter()
+            .flat_map(|p| p.out.samples.clone())
+            .collect();
+        if let Some((old, new)) = overlapping(&have, &part.out.samples) {
+            return Err(PyValueError::new_err(format!(
+                "cannot merge: samples {new} (pass {}) overlap samples {old} of another result \
+                 (the same result twice, or passes of different splits of one seed)",
+                part.pass
             )));
         }
         time += part.out.time;

@@ -7,16 +7,16 @@ use std::time::Duration;
 use lightlab::image::{Film, PixelStats};
 use lightlab::math::Spectrum;
 use lightlab::render::RenderOutput;
-use lightlab::settings::Pass;
+use lightlab::settings::{Pass, SampleBlock};
 
-const MAGIC: &[u8; 4] = b"LLR2";
+const MAGIC: &[u8; 4] = b"LLR3";
 /// Bytes per pixel: count, mean (3), M2 (3), weight, weight², 4 bytes each.
 const PIXEL_BYTES: usize = 36;
 
 /// A render's output with what the Python result shows beside it.
 #[derive(Clone, Debug)]
 pub struct Rendered {
-    /// Film, spp, time, invalid samples, stopped, shadow rays.
+    /// Film, spp, time, invalid samples, stopped, shadow rays, sample blocks.
     pub out: RenderOutput,
     /// The canonical flags of the render.
     pub settings: String,
@@ -51,6 +51,12 @@ pub fn encode(r: &Rendered) -> Vec<u8> {
     b.push(r.out.stopped as u8);
     put_str(&mut b, &r.settings);
     put_str(&mut b, &r.scene);
+    b.extend((r.out.samples.len() as u32).to_le_bytes());
+    for block in &r.out.samples {
+        b.extend(block.seed.to_le_bytes());
+        b.extend(block.first.to_le_bytes());
+        b.extend(block.last.to_le_bytes());
+    }
     for p in &film.pixels {
         b.extend(p.count.to_le_bytes());
         for v in p.mean.to_array().into_iter().chain(p.m2.to_array()) {
@@ -111,6 +117,19 @@ pub fn decode(bytes: &[u8]) -> Result<Rendered, String> {
     let time = f64::from_le_bytes(r.take::<8>()?);
     let stopped = r.take::<1>()?[0] != 0;
     let (settings, scene) = (r.string()?, r.string()?);
+    let blocks = r.u32()? as usize;
+    // 16 bytes per block: a count larger than the rest of the state is truncation.
+    if blocks > r.0.len() / 16 {
+        return Err("result state is truncated".into());
+    }
+    let mut samples = Vec::with_capacity(blocks);
+    for _ in 0..blocks {
+        samples.push(SampleBlock {
+            seed: u64::from_le_bytes(r.take::<8>()?),
+            first: r.u32()?,
+            last: r.u32()?,
+        });
+    }
     let n = width as usize * height as usize;
     if r.0.len() != n * PIXEL_BYTES {
         return Err(format!(
@@ -140,6 +159,7 @@ pub fn decode(bytes: &[u8]) -> Result<Rendered, String> {
         invalid_samples,
         stopped,
         shadow_rays,
+        samples,
     };
     Ok(Rendered {
         out,

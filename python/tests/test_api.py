@@ -125,3 +125,15 @@ def test_warp_samples_and_pdf_values():
         lightlab.warp("nope", 10)
     with pytest.raises(ValueError, match="n=0"):
         lightlab.warp("hemisphere-uniform", 0)
+
+
+def test_merge_refuses_the_same_samples_twice():
+    part = lightlab.render("builtin:assignment", pass_index=0, pass_count=2, **SMALL)
+    with pytest.raises(ValueError, match=r"samples 0:0\.\.2 \(pass 1/2\) overlap samples 0:0\.\.2"):
+        lightlab.merge([part, part])
+    third = lightlab.render("builtin:assignment", pass_index=0, pass_count=3,
+                            **dict(SMALL, spp=6))
+    with pytest.raises(ValueError, match="overlap"):
+        lightlab.merge([part, third])
+    other_seed = lightlab.render("builtin:assignment", **dict(SMALL, seed=7))
+    assert lightlab.merge([part, other_seed]).spp == 6

@@ -29,9 +29,11 @@ pub fn run(args: &MergeArgs) -> Result<(), CliError> {
             "-o {e}; merge writes .exr (variance and spp are kept)"
         ))
     })?;
-    let film = merge_files(&args.parts).map_err(CliError::input)?;
+    let merged = merge_files(&args.parts).map_err(CliError::input)?;
+    let film = merged.film;
     let parts: Vec<String> = args.parts.iter().map(|p| p.display().to_string()).collect();
-    let metadata = vec![("lightlab.merged_from".to_string(), parts.join(" "))];
+    let mut metadata = merged.metadata;
+    metadata.push(("lightlab.merged_from".to_string(), parts.join(" ")));
     write_film_with_metadata(&film, &args.output, 0.0, &metadata).map_err(CliError::failure)?;
     let spp = film.pixels.iter().map(|p| p.count).min().unwrap_or(0);
     eprintln!(

@@ -13,6 +13,7 @@ use super::render::{STOP, install_stop_handler};
 use super::{CliError, StrategyArgs};
 use crate::image::io::write_film_with_metadata;
 use crate::image::output::check_output;
+use crate::lab::merge::provenance;
 use crate::lab::reference::{ReferenceTarget, render_reference};
 use crate::lab::report::{VERSION, command_line};
 
@@ -95,27 +96,30 @@ pub fn run(args: &ReferenceArgs) -> Result<(), CliError> {
         ..settings.clone()
     };
     let partial = format!("stopped by Ctrl-C at {} spp", out.spp);
-    let mut metadata: Vec<(String, String)> = [
-        ("lightlab.version", VERSION.to_string()),
-        ("lightlab.command", command_line()),
-        ("lightlab.scene", scene.name.clone()),
-        ("lightlab.settings", final_settings.patch().to_string()),
-        ("lightlab.time_s", format!("{:.3}", out.time.as_secs_f64())),
-        ("lightlab.passes", r.passes.to_string()),
-        (
-            "lightlab.rel_error_mean",
-            format!("{:.4e}", r.error.mean_rel_error),
-        ),
-        (
-            "lightlab.rel_error_pixel_q90",
-            format!("{:.4e}", r.error.pixel_rel_error),
-        ),
-        ("lightlab.converged", r.converged.to_string()),
-        ("lightlab.invalid_samples", out.invalid_samples.to_string()),
-    ]
-    .into_iter()
-    .map(|(k, v)| (k.to_string(), v))
-    .collect();
+    // Scene, content hash, settings and sample blocks (so references merge like
+    // passes), then how the reference was made.
+    let mut metadata = provenance(&scene, &final_settings, out);
+    metadata.extend(
+        [
+            ("lightlab.version", VERSION.to_string()),
+            ("lightlab.command", command_line()),
+            ("lightlab.flags", final_settings.patch().to_string()),
+            ("lightlab.time_s", format!("{:.3}", out.time.as_secs_f64())),
+            ("lightlab.passes", r.passes.to_string()),
+            (
+                "lightlab.rel_error_mean",
+                format!("{:.4e}", r.error.mean_rel_error),
+            ),
+            (
+                "lightlab.rel_error_pixel_q90",
+                format!("{:.4e}", r.error.pixel_rel_error),
+            ),
+            ("lightlab.converged", r.converged.to_string()),
+            ("lightlab.invalid_samples", out.invalid_samples.to_string()),
+        ]
+        .into_iter()
+        .map(|(k, v)| (k.to_string(), v)),
+    );
     if out.stopped {
         metadata.push(("lightlab.partial".into(), partial.clone()));
     }

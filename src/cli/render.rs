@@ -13,6 +13,7 @@ use crate::image::io::write_film_with_metadata;
 use crate::image::output::check_output;
 use crate::image::tev::TevDisplay;
 use crate::lab::budget::{Budget, render_budget};
+use crate::lab::merge::provenance;
 use crate::render::{Control, RenderSettings};
 use crate::scene::builtin::DEFAULT_SCENE;
 
@@ -156,11 +157,10 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
     }
     // An interrupted render still writes its whole rounds, and says so in an EXR header.
     let partial = format!("stopped by Ctrl-C at {} of {} spp", out.spp, last - first);
-    let metadata: Vec<(String, String)> = out
-        .stopped
-        .then(|| ("lightlab.partial".to_string(), partial.clone()))
-        .into_iter()
-        .collect();
+    let mut metadata = provenance(&scene, &settings, &out);
+    if out.stopped {
+        metadata.push(("lightlab.partial".to_string(), partial.clone()));
+    }
     write_film_with_metadata(&out.film, &args.output, args.exposure, &metadata)
         .map_err(CliError::failure)?;
     let samples = out.spp as f64 * (camera.width * camera.height) as f64;

@@ -3,7 +3,7 @@
 
 mod settings;
 
-pub use crate::settings::Pass;
+pub use crate::settings::{Pass, SampleBlock};
 pub use settings::RenderSettings;
 
 use std::ops::Range;
@@ -37,12 +37,16 @@ pub struct RenderOutput {
     pub stopped: bool,
     /// Shadow rays traced (light and MIS estimators).
     pub shadow_rays: u64,
+    /// The samples rendered, as blocks of sample indices under a seed (one block per
+    /// render; merged outputs list all of theirs).
+    pub samples: Vec<SampleBlock>,
 }
 
 impl RenderOutput {
     /// `next` (a render of further samples of the same image, with its own streams)
-    /// added to `total`: films merged by Chan's rule, spp and invalid samples summed, the
-    /// stop flag of the later render. The time is left to the caller (zero here).
+    /// added to `total`: films merged by Chan's rule, spp, invalid samples and sample
+    /// blocks summed, the stop flag of the later render. The time is left to the caller
+    /// (zero here).
     pub fn merge(total: Option<RenderOutput>, next: RenderOutput) -> RenderOutput {
         match total {
             None => next,
@@ -50,7 +54,11 @@ impl RenderOutput {
                 stopped: next.stopped,
                 ..t
             },
-            Some(t) => RenderOutput {
+            Some(mut t) => RenderOutput {
+                samples: {
+                    t.samples.extend(next.samples);
+                    t.samples
+                },
                 film: t.film.merge(&next.film).unwrap_or(t.film),
                 time: Duration::ZERO,
                 spp: t.spp + next.spp,
@@ -131,6 +139,11 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
         invalid_samples: invalid.into_inner(),
         stopped,
         shadow_rays: estimator.shadow_rays.get(),
+        samples: vec![SampleBlock {
+            seed: settings.seed,
+            first,
+            last: done,
+        }],
     }
 }
 

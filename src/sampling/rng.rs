@@ -24,6 +24,24 @@ pub fn hash_words(words: &[u64]) -> u64 {
     h
 }
 
+/// Hashes `bytes` into a 64-bit key, continuing from `h`: 8-byte little-endian words
+/// folded by [`mix64`], then the length (so trailing zero bytes change the key). For
+/// telling contents apart, not against an adversary.
+pub fn hash_bytes(mut h: u64, bytes: &[u8]) -> u64 {
+    let mut chunks = bytes.chunks_exact(8);
+    let fold =
+        |h: u64, w: [u8; 8]| mix64(h ^ u64::from_le_bytes(w)).wrapping_add(0x9e37_79b9_7f4a_7c15);
+    for c in &mut chunks {
+        let mut w = [0u8; 8];
+        w.copy_from_slice(c);
+        h = fold(h, w);
+    }
+    let mut tail = [0u8; 8];
+    tail[..chunks.remainder().len()].copy_from_slice(chunks.remainder());
+    h = fold(h, tail);
+    mix64(h ^ bytes.len() as u64)
+}
+
 /// A PCG32 stream (O'Neill 2014) producing uniform numbers in [0, 1).
 #[derive(Clone, Debug)]
 pub struct Rng32 {
@@ -74,5 +92,23 @@ mod tests {
             same += (x == y) as u32;
         }
         assert!(same < 5);
+    }
+
+    #[test]
+    fn byte_hashes_tell_contents_lengths_and_seeds_apart() {
+        let keys = [
+            hash_bytes(0, b""),
+            hash_bytes(0, b"\0"),
+            hash_bytes(0, b"\0\0\0\0\0\0\0\0"),
+            hash_bytes(0, b"scene"),
+            hash_bytes(0, b"scenf"),
+            hash_bytes(1, b"scene"),
+        ];
+        for (i, a) in keys.iter().enumerate() {
+            for b in &keys[i + 1..] {
+                assert_ne!(a, b);
+            }
+        }
+        assert_eq!(hash_bytes(3, b"same"), hash_bytes(3, b"same"));
     }
 }

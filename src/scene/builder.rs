@@ -311,6 +311,7 @@ impl SceneBuilder {
             filter: Filter::default(),
             requested: RenderPatch::default(),
             textures: self.textures,
+            content_hash: 0,
         })
     }
 }

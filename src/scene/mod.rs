@@ -51,6 +51,10 @@ pub struct Scene {
     pub requested: RenderPatch,
     /// Reflectance textures, by material index; missing entries are untextured.
     pub textures: Vec<Option<MaterialTexture>>,
+    /// A hash of what the scene was loaded from (a file's element tree and the files it
+    /// names, or a built-in's name and parameters), recorded in rendered EXR files so
+    /// that `merge` combines only renders of one scene. Zero for scenes built in code.
+    pub content_hash: u64,
 }
 
 impl Scene {
@@ -106,7 +110,9 @@ pub fn load_with_options(
                     "-D applies to scene files only",
                 ));
             }
-            builtin::build(name)
+            let mut scene = builtin::build(name)?;
+            scene.content_hash = crate::sampling::rng::hash_bytes(0, spec.as_bytes());
+            Ok(scene)
         }
         None => {
             let (path, mut all) = split_defines(spec)?;

@@ -10,7 +10,7 @@
 mod pass;
 mod patch;
 
-pub use pass::Pass;
+pub use pass::{Pass, SampleBlock};
 pub use patch::{MAX_MIS_SAMPLES, MAX_PIXELS, MAX_SIDE, RenderPatch, SettingsError};
 
 named_enum! {

@@ -50,6 +50,51 @@ impl FromStr for Pass {
     }
 }
 
+/// A block of samples a render computed: sample indices `first..last` of every pixel
+/// under seed `seed`. Two blocks hold the same random numbers exactly when their seeds
+/// are equal and their ranges overlap, so a merge may combine blocks that are disjoint
+/// under every seed. Written `seed:first..last`, e.g. `0:16..32`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SampleBlock {
+    /// The render's seed.
+    pub seed: u64,
+    /// First sample index.
+    pub first: u32,
+    /// One past the last sample index.
+    pub last: u32,
+}
+
+impl SampleBlock {
+    /// True when both blocks hold some of the same samples.
+    pub fn overlaps(&self, o: &SampleBlock) -> bool {
+        self.seed == o.seed && self.first < o.last && o.first < self.last
+    }
+}
+
+impl fmt::Display for SampleBlock {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}:{}..{}", self.seed, self.first, self.last)
+    }
+}
+
+impl FromStr for SampleBlock {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        let err = || format!("bad sample block \"{s}\": expected SEED:FIRST..LAST, e.g. 0:16..32");
+        let (seed, range) = s.split_once(':').ok_or_else(err)?;
+        let (first, last) = range.split_once("..").ok_or_else(err)?;
+        let block = SampleBlock {
+            seed: seed.parse().map_err(|_| err())?,
+            first: first.parse().map_err(|_| err())?,
+            last: last.parse().map_err(|_| err())?,
+        };
+        if block.first > block.last {
+            return Err(err());
+        }
+        Ok(block)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -67,6 +112,19 @@ mod tests {
         assert_eq!("2/8".parse::<Pass>().unwrap(), Pass { index: 1, count: 8 });
         for bad in ["0/3", "4/3", "x", "1/0"] {
             assert!(bad.parse::<Pass>().is_err());
+        }
+    }
+
+    #[test]
+    fn sample_blocks_round_trip_and_overlap_only_under_one_seed() {
+        let a: SampleBlock = "7:0..16".parse().unwrap();
+        assert_eq!(a.to_string(), "7:0..16");
+        let b: SampleBlock = "7:16..32".parse().unwrap();
+        let c: SampleBlock = "7:8..9".parse().unwrap();
+        let d: SampleBlock = "8:0..16".parse().unwrap();
+        assert!(!a.overlaps(&b) && a.overlaps(&c) && c.overlaps(&a) && !a.overlaps(&d));
+        for bad in ["7", "7:3", "x:0..1", "1:5..2", "1:0..-1"] {
+            assert!(bad.parse::<SampleBlock>().is_err(), "{bad}");
         }
     }
 }

@@ -6,6 +6,7 @@
 
 mod bitmap;
 mod build;
+mod digest;
 mod microfacet;
 mod props;
 mod sensor;
@@ -67,7 +68,8 @@ pub fn load_with_options(
 ) -> Result<Loaded, SceneError> {
     let mut warnings = Vec::new();
     let root = tree::parse_file(path, defines, &mut warnings)?;
-    let scene = build::build(&root, path, options, &mut warnings)?;
+    let mut scene = build::build(&root, path, options, &mut warnings)?;
+    scene.content_hash = digest::digest(&root);
     Ok(Loaded { scene, warnings })
 }
 
