@@ -348,3 +348,80 @@ fn merged_passes_equal_the_whole_render() {
     assert_eq!(out.status.code(), Some(2));
     let _ = fs::remove_dir_all(dir);
 }
+
+/// `probe` records exactly the terms the estimator adds up, with one light and one BSDF
+/// record per MIS sample, weights in [0, 1], and an estimate that agrees with another
+/// estimator's at the same point (z-test); it writes its files and refuses bad pixels.
+#[test]
+fn probe_records_the_estimators_own_terms() {
+    use lightlab::lab::probe::probe;
+    let scene = lightlab::scene::load("builtin:assignment").unwrap();
+    let settings = |estimator: EstimatorKind, spp: u32| RenderSettings {
+        estimator,
+        spp,
+        ..RenderSettings::for_scene(&scene)
+    };
+    // A floor point near the diffuse sphere's shadow, lit by the rectangle.
+    let pixel = (200, 150);
+    let mis = probe(&scene, &settings(EstimatorKind::Mis, 4096), pixel).unwrap();
+    let light = probe(&scene, &settings(EstimatorKind::Light, 4096), pixel).unwrap();
+    for r in [&mis, &light] {
+        let total: Spectrum = r.samples.iter().map(|s| s.contribution).sum();
+        let mean = total / r.spp as f32;
+        assert!(
+            (mean - r.estimate).abs().max_element() <= 1e-4 * r.estimate.max_element(),
+            "recorded terms {mean} vs estimate {}",
+            r.estimate
+        );
+        for s in &r.samples {
+            assert!((0.0..=1.0 + 1e-5).contains(&s.mis_weight), "{s:?}");
+            assert!(s.w_in.is_none() || s.pdf > 0.0, "{s:?}");
+        }
+    }
+    let count = |r: &lightlab::lab::probe::ProbeReport, t: &str| {
+        r.samples.iter().filter(|s| s.technique == t).count()
+    };
+    assert_eq!((count(&mis, "light"), count(&mis, "bsdf")), (4096, 4096));
+    assert_eq!((count(&light, "light"), count(&light, "bsdf")), (4096, 0));
+    assert!(
+        light
+            .samples
+            .iter()
+            .all(|s| s.mis_weight == 1.0 || s.w_in.is_none())
+    );
+    // Both estimate the same integral at the same point.
+    let (a, b) = (mis.estimate.x as f64, light.estimate.x as f64);
+    let se = ((mis.std_error.x as f64).powi(2) + (light.std_error.x as f64).powi(2)).sqrt();
+    assert!(
+        a > 0.0 && ((a - b) / se).abs() < 4.0,
+        "mis {a} vs light {b} (se {se})"
+    );
+    // The CLI writes the JSON and the picture; a pixel outside the image is exit 2.
+    let dir = scratch("probe");
+    let bin = env!("CARGO_BIN_EXE_lightlab");
+    let out = Command::new(bin)
+        .args(flags(
+            "probe builtin:assignment --pixel 200,150 --spp 16 -o",
+        ))
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(dir.join("probe.json")).unwrap()).unwrap();
+    assert_eq!(json["samples"].as_array().unwrap().len(), 32);
+    assert!(read_image(&dir.join("probe.png")).unwrap().width > 0);
+    for bad in ["400,10", "1,2,3", "x,1"] {
+        let out = Command::new(bin)
+            .args(["probe", "--pixel", bad, "-o"])
+            .arg(&dir)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "--pixel {bad}");
+    }
+    let _ = fs::remove_dir_all(dir);
+}

@@ -8,6 +8,7 @@ mod diff;
 mod figure;
 mod lab_args;
 mod merge;
+mod probe;
 mod reference;
 mod render;
 mod scenes;
@@ -80,6 +81,9 @@ enum Command {
     Converge(converge::ConvergeArgs),
     /// Merge the EXR parts of a `--pass I/N` render (sample-weighted, variance kept).
     Merge(merge::MergeArgs),
+    /// Where one pixel's samples go: every direction the estimator draws at the surface
+    /// seen through a pixel, with density, MIS weight and contribution (JSON and PNG).
+    Probe(probe::ProbeArgs),
     /// Reproduce one of the lecture's comparisons (`--list` names them).
     Figure(figure::FigureArgs),
     /// Throughput figures: rays/s, BVH build time, samples/s per estimator (medians).
@@ -104,6 +108,7 @@ pub fn main() -> i32 {
         Command::Compare(a) => compare::run(&a),
         Command::Converge(a) => converge::run(&a),
         Command::Merge(a) => merge::run(&a),
+        Command::Probe(a) => probe::run(&a),
         Command::Figure(a) => figure::run(&a),
         Command::Bench(a) => bench::run(&a),
     };

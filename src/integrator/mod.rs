@@ -7,11 +7,13 @@
 mod directional;
 mod light;
 pub mod mis;
+pub mod probe;
 mod ris;
 
 pub use crate::settings::{DEFAULT_RIS_CANDIDATES, MAX_RIS_CANDIDATES};
 
 pub use mis::{MisHeuristic, MisSettings};
+pub use probe::{Probe, ProbeSample};
 
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -138,6 +140,19 @@ impl Estimator {
         w_out: Vec3,
         src: &mut impl Uniform,
     ) -> Spectrum {
+        self.direct_probed(scene, hit, w_out, src, None)
+    }
+
+    /// [`Estimator::direct`], recording every sample it draws into `probe` when given
+    /// (`lightlab probe`).
+    pub fn direct_probed(
+        &self,
+        scene: &Scene,
+        hit: &SurfaceHit,
+        w_out: Vec3,
+        src: &mut impl Uniform,
+        probe: Option<&Probe>,
+    ) -> Spectrum {
         let mut material = &scene.materials[hit.material as usize];
         let textured;
         if let Some(t) = scene.texture(hit.material) {
@@ -175,11 +190,12 @@ impl Estimator {
             w_out: w_out_local,
             ris: self.ris,
             shadow_rays: &self.shadow_rays,
+            probe,
         };
         match self.kind {
             EstimatorKind::Light => light::estimate(&ctx, src),
             EstimatorKind::Mis => mis::estimate(&ctx, self.mis, src),
-            kind => directional::estimate(scene, kind, hit, material, w_out_local, src),
+            kind => directional::estimate(&ctx, kind, src),
         }
     }
 }
@@ -200,9 +216,19 @@ struct Context<'a> {
     ris: Option<u32>,
     /// Where shadow rays are counted.
     shadow_rays: &'a ShadowRays,
+    /// Where samples are recorded (`lightlab probe`), if anywhere.
+    probe: Option<&'a Probe>,
 }
 
 impl Context<'_> {
+    /// Records the sample `make` describes when a probe listens (built only then).
+    #[inline]
+    fn record(&self, make: impl FnOnce() -> ProbeSample) {
+        if let Some(p) = self.probe {
+            p.record(make());
+        }
+    }
+
     /// Whether the segment to a light sample is blocked (one counted shadow ray). Point
     /// lights and lights at infinity have no surface point to aim a segment at.
     fn occluded(&self, ls: &LightSample) -> bool {

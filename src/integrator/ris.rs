@@ -17,6 +17,8 @@
 
 use glam::Vec3;
 
+use super::light::light_record;
+use super::probe::no_direction;
 use super::{Context, f_cos};
 use crate::light::LightSample;
 use crate::light::select::LightSelector;
@@ -30,6 +32,8 @@ use crate::settings::MAX_RIS_CANDIDATES;
 pub(super) struct Resampled {
     /// The light sample (direction, distance, radiance, the light's own pdf).
     pub ls: LightSample,
+    /// Which light it is on.
+    pub light: usize,
     /// The incident direction in the local shading frame.
     pub w_in: Vec3,
     /// f·|cos θ| at that direction.
@@ -72,6 +76,7 @@ pub(super) fn resample(
         if reservoir.offer((target / p_source) as f64) {
             let r = Resampled {
                 ls,
+                light: sel.index,
                 w_in,
                 f,
                 p_source,
@@ -120,12 +125,17 @@ impl Reservoir {
 /// One sample of the light estimator with resampling: f·cos·Le·V·W.
 pub(super) fn estimate(ctx: &Context<'_>, src: &mut impl Uniform, candidates: u32) -> Spectrum {
     let Some(r) = resample(ctx, src, candidates) else {
+        ctx.record(|| no_direction("ris"));
         return Spectrum::ZERO;
     };
-    if ctx.occluded(&r.ls) {
-        return Spectrum::ZERO;
-    }
-    r.f * r.ls.radiance * r.weight
+    let occluded = ctx.occluded(&r.ls);
+    let value = if occluded {
+        Spectrum::ZERO
+    } else {
+        r.f * r.ls.radiance * r.weight
+    };
+    ctx.record(|| light_record("ris", &r.ls, r.light, r.p_source, 1.0, value, occluded));
+    value
 }
 
 #[cfg(test)]

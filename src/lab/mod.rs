@@ -13,6 +13,7 @@ pub mod figure;
 pub mod insets;
 pub mod merge;
 pub mod plot;
+pub mod probe;
 pub mod reference;
 pub mod report;
 pub mod strategy;

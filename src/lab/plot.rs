@@ -36,9 +36,9 @@ pub struct LogLogPlot {
 }
 
 const SIZE: (u32, u32) = (820, 540);
-const FONT: &str = "sans-serif";
+pub(crate) const FONT: &str = "sans-serif";
 
-fn register() -> bool {
+pub(crate) fn register() -> bool {
     static DONE: OnceLock<bool> = OnceLock::new();
     *DONE.get_or_init(|| {
         register_font(

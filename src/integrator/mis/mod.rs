@@ -17,6 +17,8 @@ mod weights;
 
 pub use weights::{MisHeuristic, mis_weight};
 
+use super::light::light_record;
+use super::probe::{ProbeSample, no_direction};
 use super::{Context, emitted_at, f_cos};
 use crate::bsdf::Bsdf;
 use crate::geometry::{NO_LIGHT, Ray, offset_origin};
@@ -76,28 +78,45 @@ fn light_sample(
     let u_select = src.next_1d();
     let u_point = src.next_2d();
     let Some(sel) = ctx.selector.select(ctx.at, u_select) else {
+        ctx.record(|| no_direction("light"));
         return Spectrum::ZERO;
     };
     let light = &ctx.scene.lights[sel.index];
     let Some(ls) = light.sample(ctx.at, u_point, ctx.lights) else {
+        ctx.record(|| no_direction("light"));
         return Spectrum::ZERO;
     };
     let w_in = ctx.hit.frame.to_local(ls.w_in);
     let f = f_cos(ctx.material, w_in, ctx.w_out);
-    if f == Spectrum::ZERO {
-        return Spectrum::ZERO;
-    }
-    if ctx.occluded(&ls) {
+    let p_light = sel.pmf * ls.pdf;
+    let occluded = f != Spectrum::ZERO && ctx.occluded(&ls);
+    if f == Spectrum::ZERO || occluded {
+        ctx.record(|| {
+            light_record(
+                "light",
+                &ls,
+                sel.index,
+                p_light,
+                0.0,
+                Spectrum::ZERO,
+                occluded,
+            )
+        });
         return Spectrum::ZERO;
     }
     let factor = if ls.delta {
         delta_scale / (ls.pdf * sel.pmf)
     } else {
-        let p_light = sel.pmf * ls.pdf;
         let p_bsdf = ctx.material.pdf(w_in, ctx.w_out);
         scale(p_light, p_bsdf)
     };
-    f * ls.radiance * factor
+    let value = f * ls.radiance * factor;
+    // factor = w / (n·p) (or w / (c·p) one-sample) and delta_scale = 1/n (or 1/c).
+    ctx.record(|| {
+        let w = factor * p_light / delta_scale;
+        light_record("light", &ls, sel.index, p_light, w, value, false)
+    });
+    value
 }
 
 /// One light sample resampled from `m` candidates (RIS, see [`super::ris`]): f·cos·Le·W
@@ -112,9 +131,11 @@ fn resampled_light_sample(
     delta_scale: f32,
 ) -> Spectrum {
     let Some(r) = super::ris::resample(ctx, src, m) else {
+        ctx.record(|| no_direction("ris"));
         return Spectrum::ZERO;
     };
     if ctx.occluded(&r.ls) {
+        ctx.record(|| light_record("ris", &r.ls, r.light, r.p_source, 0.0, Spectrum::ZERO, true));
         return Spectrum::ZERO;
     }
     let weight = if r.ls.delta {
@@ -123,7 +144,12 @@ fn resampled_light_sample(
         let p_bsdf = ctx.material.pdf(r.w_in, ctx.w_out);
         scale(r.p_source, p_bsdf) * r.p_source
     };
-    r.f * r.ls.radiance * (r.weight * weight)
+    let value = r.f * r.ls.radiance * (r.weight * weight);
+    ctx.record(|| {
+        let w = weight / delta_scale;
+        light_record("ris", &r.ls, r.light, r.p_source, w, value, false)
+    });
+    value
 }
 
 /// One BSDF sample: `scale(p_bsdf, p_light)` as in [`light_sample`]; `delta_scale`
@@ -135,9 +161,11 @@ fn bsdf_sample(
     delta_scale: f32,
 ) -> Spectrum {
     let Some(s) = ctx.material.sample(ctx.w_out, src.next_2d()) else {
+        ctx.record(|| no_direction("bsdf"));
         return Spectrum::ZERO;
     };
     if s.pdf.is_nan() || s.pdf <= 0.0 || s.f == Spectrum::ZERO {
+        ctx.record(|| no_direction("bsdf"));
         return Spectrum::ZERO;
     }
     let w_world = ctx.hit.frame.to_world(s.w_in);
@@ -145,7 +173,20 @@ fn bsdf_sample(
     // The emitter the ray reaches (a surface light, or the environment if it escapes),
     // its radiance, and the light strategy's density for this direction.
     let scene = ctx.scene;
-    let (index, le, pdf_light) = match scene.geometry.intersect(&ray, f32::INFINITY) {
+    let record = |light: Option<usize>, point: Option<glam::Vec3>, w: f32, value: Spectrum| {
+        ctx.record(|| ProbeSample {
+            sample: 0,
+            technique: "bsdf",
+            w_in: Some(w_world),
+            pdf: s.pdf,
+            mis_weight: w,
+            contribution: value,
+            light,
+            light_point: point,
+            occluded: false,
+        })
+    };
+    let (index, le, pdf_light, point) = match scene.geometry.intersect(&ray, f32::INFINITY) {
         Some(y) if y.light != NO_LIGHT => {
             let i = y.light as usize;
             let le = emitted_at(scene, &y, -w_world);
@@ -154,9 +195,12 @@ fn bsdf_sample(
             } else {
                 scene.lights[i].pdf(ctx.at, y.p, y.ng, ctx.lights)
             };
-            (i, le, pdf)
+            (i, le, pdf, Some(y.p))
         }
-        Some(_) => return Spectrum::ZERO,
+        Some(_) => {
+            record(None, None, 0.0, Spectrum::ZERO);
+            return Spectrum::ZERO;
+        }
         None => match scene.environment {
             Some(i) => {
                 let light = &scene.lights[i];
@@ -164,12 +208,17 @@ fn bsdf_sample(
                     i,
                     light.infinite_radiance(w_world),
                     light.infinite_pdf(w_world, ctx.lights),
+                    None,
                 )
             }
-            None => return Spectrum::ZERO,
+            None => {
+                record(None, None, 0.0, Spectrum::ZERO);
+                return Spectrum::ZERO;
+            }
         },
     };
     if le == Spectrum::ZERO {
+        record(Some(index), point, 0.0, Spectrum::ZERO);
         return Spectrum::ZERO;
     }
     let f = s.f * s.w_in.z.abs();
@@ -179,5 +228,7 @@ fn bsdf_sample(
         let p_light = ctx.selector.pmf(ctx.at, index) * pdf_light;
         scale(s.pdf, p_light)
     };
-    f * le * factor
+    let value = f * le * factor;
+    record(Some(index), point, factor * s.pdf / delta_scale, value);
+    value
 }

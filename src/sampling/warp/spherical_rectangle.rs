@@ -160,9 +160,11 @@ impl SphericalRectangle {
         } else {
             y1
         };
-        // (x_u, y_v, z0) lies on the rectangle (both clamped), so the density is 1/S.
-        let w = (xu * self.x + yv * self.y + z0 * self.z) / (d2 + yv * yv).sqrt();
-        (w.as_vec3(), (1.0 / self.solid_angle) as f32)
+        // (x_u, y_v, z0) lies on the rectangle (both clamped), but the f32 direction of a
+        // far rectangle's edge point may round to just outside: its density is what
+        // `pdf` says of the direction returned, so the two always agree.
+        let w = ((xu * self.x + yv * self.y + z0 * self.z) / (d2 + yv * yv).sqrt()).as_vec3();
+        (w, self.pdf(w))
     }
 
     /// The point (x, y) where direction w meets the rectangle's plane, in local
