@@ -133,6 +133,7 @@ impl Estimator {
     }
 
     /// One sample of reflected direct light L_out(x, ω_out) at a surface hit.
+    #[inline]
     pub fn direct(
         &self,
         scene: &Scene,
@@ -145,6 +146,7 @@ impl Estimator {
 
     /// [`Estimator::direct`], recording every sample it draws into `probe` when given
     /// (`lightlab probe`).
+    #[inline(always)]
     pub fn direct_probed(
         &self,
         scene: &Scene,
