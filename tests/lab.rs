@@ -31,6 +31,15 @@ fn scratch(name: &str) -> PathBuf {
     dir
 }
 
+/// Fails with the command's stderr unless it exited 0.
+fn assert_succeeded(out: &std::process::Output) {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
 fn flags(text: &str) -> Vec<String> {
     text.split_whitespace().map(str::to_string).collect()
 }
@@ -242,11 +251,7 @@ fn merged_passes_equal_the_whole_render() {
             .args(extra)
             .output()
             .unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        assert_succeeded(&out);
     };
     let whole = dir.join("whole.exr");
     run(&["-o", whole.to_str().unwrap()]);
@@ -406,11 +411,7 @@ fn probe_records_the_estimators_own_terms() {
         .arg(&dir)
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_succeeded(&out);
     let json: serde_json::Value =
         serde_json::from_str(&fs::read_to_string(dir.join("probe.json")).unwrap()).unwrap();
     assert_eq!(json["samples"].as_array().unwrap().len(), 32);

@@ -197,6 +197,20 @@ fn radius(s: &ProbeSample, largest: f32) -> i32 {
     }
 }
 
+/// A sample's dot at `at`: filled in its technique's colour when it contributes, hollow
+/// when it adds zero, grey when shadowed.
+fn marker(s: &ProbeSample, at: (f32, f32), largest: f32) -> Circle<(f32, f32), i32> {
+    let c = colour(s.technique);
+    let style = if s.occluded {
+        RGBColor(150, 150, 150).stroke_width(1)
+    } else if s.contribution == Spectrum::ZERO {
+        c.stroke_width(1)
+    } else {
+        c.filled()
+    };
+    Circle::new(at, radius(s, largest), style)
+}
+
 fn draw<DB: DrawingBackend>(
     report: &ProbeReport,
     scene: &str,
@@ -249,20 +263,8 @@ fn draw<DB: DrawingBackend>(
     for s in &report.samples {
         let Some(w) = s.w_in else { continue };
         let l = report.frame.to_local(w);
-        let c = colour(s.technique);
-        let style = if s.occluded {
-            RGBColor(150, 150, 150).stroke_width(1)
-        } else if s.contribution == Spectrum::ZERO {
-            c.stroke_width(1)
-        } else {
-            c.filled()
-        };
         chart
-            .draw_series(std::iter::once(Circle::new(
-                (l.x, l.y),
-                radius(s, largest),
-                style,
-            )))
+            .draw_series(std::iter::once(marker(s, (l.x, l.y), largest)))
             .map_err(e)?;
     }
     // Legend: techniques present, and what hollow and grey dots mean.
@@ -323,21 +325,9 @@ fn draw<DB: DrawingBackend>(
         .label_style((FONT, 11))
         .draw()
         .map_err(e)?;
-    for (&(a, b), (_, s)) in flat.iter().zip(&points) {
-        let c = colour(s.technique);
-        let style = if s.occluded {
-            RGBColor(150, 150, 150).stroke_width(1)
-        } else if s.contribution == Spectrum::ZERO {
-            c.stroke_width(1)
-        } else {
-            c.filled()
-        };
+    for (&at, (_, s)) in flat.iter().zip(&points) {
         chart
-            .draw_series(std::iter::once(Circle::new(
-                (a, b),
-                radius(s, largest),
-                style,
-            )))
+            .draw_series(std::iter::once(marker(s, at, largest)))
             .map_err(e)?;
     }
     root.present().map_err(e)
