@@ -250,6 +250,10 @@ fn main() {
             .filter(|(r, t)| ours.any_hit(r, *t))
             .count();
         println!("|  | rays that hit | | primary: {hit} | | shadow: {blocked} | |");
+        println!(
+            "|  | lightlab memory | {:.1} bytes per triangle (tree and triangles) | | | | |",
+            ours.bytes_per_triangle()
+        );
         let (closest, shadow) = disagreements(&ours, &theirs, &rays);
         println!("|  | disagreements | | closest: {closest} rays | | any-hit: {shadow} rays | |");
     }

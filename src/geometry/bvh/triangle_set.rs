@@ -70,6 +70,14 @@ impl TriangleSet {
         &self.bvh
     }
 
+    /// Bytes held per triangle: the tree (nodes and primitive order) and the triangles'
+    /// vertex and edge vectors, over the triangle count.
+    pub fn bytes_per_triangle(&self) -> f64 {
+        let triangles = self.edges.len().max(1);
+        (self.bvh.memory_bytes() + std::mem::size_of_val(self.edges.as_slice())) as f64
+            / triangles as f64
+    }
+
     /// Number of triangles.
     pub fn len(&self) -> usize {
         self.edges.len()
