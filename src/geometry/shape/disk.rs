@@ -40,7 +40,7 @@ impl Disk {
         Frame::from_normal(self.normal)
     }
 
-    /// Nearest intersection in (0, t_max); both sides count. uv = (r/R, φ/2π).
+    /// Nearest intersection in (0, t_max); both sides count.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
         let denom = ray.d.dot(self.normal);
@@ -52,16 +52,20 @@ impl Disk {
             return None;
         }
         let q = ray.at(t) - self.center;
-        let r2 = q.length_squared();
-        if r2 > self.radius * self.radius {
+        if q.length_squared() > self.radius * self.radius {
             return None;
         }
+        // Texture coordinates wait for the winning hit ([`Disk::uv_at`]).
+        Some(ShapeHit { t, uv: Vec2::ZERO })
+    }
+
+    /// uv = (r/R, φ/2π) at the point `p` on the disk.
+    #[inline]
+    pub fn uv_at(&self, p: Vec3) -> Vec2 {
+        let q = p - self.center;
         let local = self.frame().to_local(q);
         let phi = local.y.atan2(local.x);
         let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
-        Some(ShapeHit {
-            t,
-            uv: Vec2::new(r2.sqrt() / self.radius, phi / (2.0 * PI)),
-        })
+        Vec2::new(q.length() / self.radius, phi / (2.0 * PI))
     }
 }

@@ -125,7 +125,7 @@ impl Shape {
             },
             Shape::Sphere(s) => SurfaceGeometry {
                 ng: s.normal_at(p),
-                uv: hit.uv,
+                uv: s.uv_at(p),
             },
             Shape::Rectangle(r) => SurfaceGeometry {
                 ng: r.normal,
@@ -133,7 +133,7 @@ impl Shape {
             },
             Shape::Disk(d) => SurfaceGeometry {
                 ng: d.normal,
-                uv: hit.uv,
+                uv: d.uv_at(p),
             },
         }
     }
