@@ -1,6 +1,7 @@
 //! Small numerics shared by every module: shading frames and RGB spectra.
 //! Vectors themselves come from `glam`.
 
+pub mod atan;
 pub mod frame;
 pub mod spectrum;
 

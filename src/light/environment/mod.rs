@@ -19,6 +19,7 @@ pub use sky::{SkyParameters, procedural_sky};
 
 use glam::{Mat3, Vec2, Vec3};
 
+use crate::math::atan::atan2;
 use crate::math::{PI, Spectrum, spectrum::luminance};
 use crate::sampling::distribution::PiecewiseConstant2D;
 use crate::sampling::sampler::ONE_MINUS_EPSILON;
@@ -74,9 +75,9 @@ fn uv_to_direction(uv: Vec2) -> (Vec3, f32) {
 /// [`uv_to_direction`]), u wrapped into [0, 1).
 #[inline]
 fn direction_to_uv(w: Vec3) -> Vec2 {
-    let u = w.x.atan2(-w.z) * (0.5 / PI);
+    let u = atan2(w.x, -w.z) * (0.5 / PI);
     // θ by atan2 stays accurate at the poles, where acos(y) loses every digit.
-    let v = (w.x * w.x + w.z * w.z).sqrt().atan2(w.y) / PI;
+    let v = atan2((w.x * w.x + w.z * w.z).sqrt(), w.y) / PI;
     Vec2::new(u - u.floor(), v.min(ONE_MINUS_EPSILON))
 }
 
