@@ -5,8 +5,9 @@ use glam::{Vec2, Vec3};
 use super::ShapeHit;
 use crate::geometry::{Aabb, Ray};
 
-/// A rectangle { o + α·ea + β·eb : α, β ∈ [0, 1] } with ea ⟂ eb. Its front side is
-/// n = ea × eb / |ea × eb|.
+/// A rectangle { o + α·ea + β·eb : α, β ∈ [0, 1] } with ea ⟂ eb; (α, β) are its texture
+/// coordinates. Its front side is `normal`: ea × eb / |ea × eb|, or the opposite for a
+/// [`Rectangle::flipped`] one.
 #[derive(Clone, Copy, Debug)]
 pub struct Rectangle {
     /// Corner (the lecture's a).
@@ -32,6 +33,15 @@ impl Rectangle {
             eb,
             normal: n / len,
         })
+    }
+
+    /// The same rectangle with its front side reversed, keeping the edges (and so the
+    /// texture coordinates) as they are.
+    pub fn flipped(self) -> Rectangle {
+        Rectangle {
+            normal: -self.normal,
+            ..self
+        }
     }
 
     /// The four corners a, b, c, d in order.

@@ -96,16 +96,21 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
             let corner = |x: f32, y: f32| to_world.transform_point3(Vec3::new(x, y, 0.0));
             let o = corner(-1.0, -1.0);
             let (mut ea, mut eb) = (corner(1.0, -1.0) - o, corner(-1.0, 1.0) - o);
-            let n = (normal_matrix * Vec3::Z) * if flip { -1.0 } else { 1.0 };
-            if ea.cross(eb).dot(n) < 0.0 {
-                std::mem::swap(&mut ea, &mut eb);
-            }
+            // Mitsuba's rectangle: u along local x, v along local y, normal
+            // dp/du × dp/dv (so a mirroring to_world turns it), negated by flip_normals
+            // (checked against Mitsuba 3.9's ray_intersect).
+            let flipped = flip;
             match Rectangle::new(o, ea, eb) {
                 Some(r) => {
+                    let r = if flipped { r.flipped() } else { r };
                     ctx.builder.shape(Shape::Rectangle(r), material, emission);
                 }
-                // A sheared rectangle is a parallelogram: two triangles.
+                // A sheared rectangle is a parallelogram: two triangles, wound so that
+                // their normal is n.
                 None => {
+                    if flipped {
+                        std::mem::swap(&mut ea, &mut eb);
+                    }
                     let mesh = Mesh {
                         positions: vec![o, o + ea, o + ea + eb, o + eb],
                         indices: vec![[0, 1, 2], [0, 2, 3]],
@@ -259,5 +264,41 @@ mod tests {
             let centre = (a + b + c) / 3.0;
             assert!(n.dot(centre) > 0.0);
         }
+    }
+
+    /// Flipping a rectangle's normal (or mirroring it) turns its front side and keeps
+    /// Mitsuba's texture coordinates, u along local x and v along local y.
+    #[test]
+    fn flipped_rectangles_keep_their_texture_coordinates() {
+        let at = |children: &str| {
+            let text = format!(
+                r#"<scene version="3.0.0"><sensor type="perspective"><float name="fov" value="40"/></sensor>
+                   <shape type="rectangle">{children}</shape></scene>"#
+            );
+            let scene = crate::scene::xml::load_str(&text, &[])
+                .expect("loads")
+                .scene;
+            let ray = crate::geometry::Ray::new(glam::Vec3::new(0.5, -0.25, 3.0), -glam::Vec3::Z);
+            let hit = scene.geometry.intersect(&ray, f32::INFINITY).expect("hit");
+            (hit.uv, hit.ng)
+        };
+        let (uv, ng) = at("");
+        assert!((uv - glam::Vec2::new(0.75, 0.375)).length() < 1e-5, "{uv}");
+        assert!((ng - glam::Vec3::Z).length() < 1e-5);
+        let (uv_flip, ng_flip) = at(r#"<boolean name="flip_normals" value="true"/>"#);
+        assert!((uv_flip - uv).length() < 1e-5, "{uv_flip}");
+        assert!((ng_flip + ng).length() < 1e-5, "{ng_flip}");
+        // Mirrored in x: u runs the other way and the normal, dp/du × dp/dv, turns to
+        // −z, as Mitsuba 3.9 reports for the same ray; flip_normals turns it back.
+        let mirror = r#"<transform name="to_world"><scale x="-1"/></transform>"#;
+        let (uv_m, ng_m) = at(mirror);
+        assert!(
+            (uv_m - glam::Vec2::new(0.25, 0.375)).length() < 1e-5,
+            "{uv_m}"
+        );
+        assert!((ng_m + glam::Vec3::Z).length() < 1e-5, "{ng_m}");
+        let flip = r#"<boolean name="flip_normals" value="true"/>"#;
+        let (uv_mf, ng_mf) = at(&format!("{flip}{mirror}"));
+        assert!((uv_mf - uv_m).length() < 1e-5 && (ng_mf - glam::Vec3::Z).length() < 1e-5);
     }
 }
