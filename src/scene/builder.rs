@@ -138,6 +138,7 @@ impl SceneBuilder {
                         center: o,
                         normal: Vec3::ZERO,
                         radius: f32::NAN,
+                        axes: [Vec3::ZERO; 2],
                     }),
                     material,
                     light: NO_LIGHT,
@@ -157,11 +158,7 @@ impl SceneBuilder {
         emission: Option<Emission>,
     ) -> &mut Self {
         self.shape(
-            Shape::Disk(Disk {
-                center,
-                normal: normal.normalize(),
-                radius,
-            }),
+            Shape::Disk(Disk::new(center, normal.normalize(), radius)),
             material,
             emission,
         )

@@ -91,11 +91,7 @@ fn shape_of(shape: TestShape) -> Shape {
             mesh: 0,
             index: 0,
         }),
-        TestShape::Disk => Shape::Disk(Disk {
-            center: Vec3::new(0.0, 0.0, 1.0),
-            normal: -Vec3::Z,
-            radius: 0.5,
-        }),
+        TestShape::Disk => Shape::Disk(Disk::new(Vec3::new(0.0, 0.0, 1.0), -Vec3::Z, 0.5)),
         TestShape::Polygon => unreachable!("polygons are not a Shape"),
     }
 }

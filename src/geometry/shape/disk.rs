@@ -15,9 +15,24 @@ pub struct Disk {
     pub normal: Vec3,
     /// Radius.
     pub radius: f32,
+    /// Unit vectors in the disk's plane along which the texture angle φ is 0 and π/2
+    /// (Mitsuba: the to_world images of local x and y).
+    pub axes: [Vec3; 2],
 }
 
 impl Disk {
+    /// A disk whose texture angle starts at an arbitrary tangent (for disks built in
+    /// code; scene files give [`Disk::axes`]).
+    pub fn new(center: Vec3, normal: Vec3, radius: f32) -> Disk {
+        let f = Frame::from_normal(normal);
+        Disk {
+            center,
+            normal,
+            radius,
+            axes: [f.s, f.t],
+        }
+    }
+
     /// Bounding box (tight per axis: extent r·√(1 − n_i²)).
     pub fn bounds(&self) -> Aabb {
         let e = self.radius
@@ -63,8 +78,7 @@ impl Disk {
     #[inline]
     pub fn uv_at(&self, p: Vec3) -> Vec2 {
         let q = p - self.center;
-        let local = self.frame().to_local(q);
-        let phi = local.y.atan2(local.x);
+        let phi = q.dot(self.axes[1]).atan2(q.dot(self.axes[0]));
         let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
         Vec2::new(q.length() / self.radius, phi / (2.0 * PI))
     }

@@ -132,10 +132,12 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
                 ));
             }
             let n = (normal_matrix * Vec3::Z).normalize() * if flip { -1.0 } else { 1.0 };
+            // Mitsuba's disk uv: (r/R, φ/2π) with φ measured from local x towards local y.
             let disk = Disk {
                 center: to_world.transform_point3(Vec3::ZERO),
                 normal: n,
                 radius,
+                axes: [ex / radius, ey / radius],
             };
             ctx.builder.shape(Shape::Disk(disk), material, emission);
         }
@@ -266,14 +268,15 @@ mod tests {
         }
     }
 
-    /// Flipping a rectangle's normal (or mirroring it) turns its front side and keeps
-    /// Mitsuba's texture coordinates, u along local x and v along local y.
+    /// Rectangles and disks have Mitsuba's texture coordinates and normals when flipped
+    /// (flip_normals) or mirrored (a negative scale), as Mitsuba 3.9's ray_intersect
+    /// reports for the same rays.
     #[test]
-    fn flipped_rectangles_keep_their_texture_coordinates() {
-        let at = |children: &str| {
+    fn rectangles_and_disks_keep_mitsubas_uv_and_normal_when_flipped_or_mirrored() {
+        let hit = |shape: &str, children: &str| {
             let text = format!(
                 r#"<scene version="3.0.0"><sensor type="perspective"><float name="fov" value="40"/></sensor>
-                   <shape type="rectangle">{children}</shape></scene>"#
+                   <shape type="{shape}">{children}</shape></scene>"#
             );
             let scene = crate::scene::xml::load_str(&text, &[])
                 .expect("loads")
@@ -282,6 +285,7 @@ mod tests {
             let hit = scene.geometry.intersect(&ray, f32::INFINITY).expect("hit");
             (hit.uv, hit.ng)
         };
+        let at = |children: &str| hit("rectangle", children);
         let (uv, ng) = at("");
         assert!((uv - glam::Vec2::new(0.75, 0.375)).length() < 1e-5, "{uv}");
         assert!((ng - glam::Vec3::Z).length() < 1e-5);
@@ -300,5 +304,20 @@ mod tests {
         let flip = r#"<boolean name="flip_normals" value="true"/>"#;
         let (uv_mf, ng_mf) = at(&format!("{flip}{mirror}"));
         assert!((uv_mf - uv_m).length() < 1e-5 && (ng_mf - glam::Vec3::Z).length() < 1e-5);
+        // Disks: uv = (r/R, φ/2π) with φ from local x towards local y (Mitsuba 3.9 gives
+        // (0.559017, 0.926208) here, and v = 0.573792 when mirrored in x).
+        let (uv_d, _) = hit("disk", "");
+        assert!(
+            (uv_d - glam::Vec2::new(0.559_017, 0.926_208)).length() < 1e-5,
+            "{uv_d}"
+        );
+        let (uv_dm, ng_dm) = hit("disk", mirror);
+        assert!(
+            (uv_dm - glam::Vec2::new(0.559_017, 0.573_792)).length() < 1e-5,
+            "{uv_dm}"
+        );
+        assert!((ng_dm - glam::Vec3::Z).length() < 1e-5, "{ng_dm}");
+        let (uv_df, ng_df) = hit("disk", flip);
+        assert!((uv_df - uv_d).length() < 1e-5 && (ng_df + glam::Vec3::Z).length() < 1e-5);
     }
 }
