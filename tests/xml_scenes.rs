@@ -71,6 +71,10 @@ const CASES: &[(&str, &str)] = &[
         "bitmap PNG (sRGB, nearest, to_uv) by ref, JPEG (bilinear, clamp) in twosided on an OBJ with uv (flip_tex_coords), EXR (mirror)",
     ),
     (
+        "textured_emitter",
+        "bitmap radiance on area emitters (rectangle PNG nearest, disk EXR mirrored by to_uv, sphere JPEG), emitters without a BSDF reflect nothing",
+    ),
+    (
         "envmap_rotated",
         "envmap (EXR, scale, to_world rotation), disk",
     ),

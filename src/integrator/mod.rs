@@ -251,7 +251,7 @@ pub fn emitted_at(scene: &Scene, hit: &SurfaceHit, w: Vec3) -> Spectrum {
     if hit.light == NO_LIGHT {
         return Spectrum::ZERO;
     }
-    scene.lights[hit.light as usize].emitted(hit.ng, w)
+    scene.lights[hit.light as usize].emitted(hit.p, hit.ng, w)
 }
 
 /// f · |cos θ| for a local incident direction: the part of the integrand every

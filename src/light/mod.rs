@@ -9,8 +9,8 @@ mod polygon;
 pub mod select;
 
 pub use area::{
-    AreaLight, EmitterKind, LightPoint, LightSampling, UnsupportedSampling, check_sampling,
-    sampling_summary, uniform_area_pdf,
+    AreaLight, EmissionTexture, EmitterKind, LightPoint, LightSampling, UnsupportedSampling,
+    UntexturableShape, check_sampling, sampling_summary, texture_uv_at, uniform_area_pdf,
 };
 pub use environment::Environment;
 pub use point::PointLight;
@@ -150,11 +150,12 @@ impl Light {
         }
     }
 
-    /// Radiance emitted from a point with normal `ny` in direction `w` (away from it).
+    /// Radiance emitted from the point `y` with normal `ny` in direction `w` (away from
+    /// it).
     #[inline]
-    pub fn emitted(&self, ny: Vec3, w: Vec3) -> Spectrum {
+    pub fn emitted(&self, y: Vec3, ny: Vec3, w: Vec3) -> Spectrum {
         match self {
-            Light::Area(l) => l.emitted(ny, w),
+            Light::Area(l) => l.emitted(y, ny, w),
             Light::Point(_) | Light::Environment(_) => Spectrum::ZERO,
             Light::Polygon(l) => l.emitted(w),
         }

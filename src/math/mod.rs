@@ -1,9 +1,11 @@
-//! Small numerics shared by every module: shading frames and RGB spectra.
+//! Small numerics shared by every module: shading frames, RGB spectra, bitmap texture
+//! lookups.
 //! Vectors themselves come from `glam`.
 
 pub mod atan;
 pub mod frame;
 pub mod spectrum;
+pub mod texture;
 
 pub use frame::Frame;
 pub use spectrum::Spectrum;

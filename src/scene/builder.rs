@@ -1,23 +1,28 @@
 //! Building scenes in code: add shapes with materials and emission, then `build`.
 
+use std::sync::Arc;
+
 use glam::Vec3;
 
-use super::texture::MaterialTexture;
+use super::texture::{MaterialTexture, Texture};
 use super::{Scene, SceneError};
 use crate::bsdf::Material;
 use crate::geometry::shape::{Disk, Rectangle, Sphere, Triangle};
 use crate::geometry::{Geometry, Mesh, NO_LIGHT, Primitive, Shape};
 use crate::image::Filter;
-use crate::light::{AreaLight, Environment, Light, PointLight, PolygonLight};
+use crate::light::{AreaLight, EmissionTexture, Environment, Light, PointLight, PolygonLight};
 use crate::math::Spectrum;
 use crate::scene::Camera;
 use crate::settings::RenderPatch;
 
-/// Emission of a shape: radiance and sidedness.
-#[derive(Clone, Copy, Debug)]
+/// Emission of a shape: radiance, an optional radiance texture, and sidedness.
+#[derive(Clone, Debug)]
 pub struct Emission {
-    /// Radiance.
+    /// Radiance (a factor on the texture's value when there is one).
     pub radiance: Spectrum,
+    /// A radiance texture over the shape's texture coordinates (rectangles, disks and
+    /// spheres only).
+    pub texture: Option<Arc<Texture>>,
     /// Emits from both sides.
     pub two_sided: bool,
 }
@@ -27,6 +32,16 @@ impl Emission {
     pub fn new(r: Spectrum) -> Emission {
         Emission {
             radiance: r,
+            texture: None,
+            two_sided: false,
+        }
+    }
+
+    /// One-sided emission of the radiance texture `t`.
+    pub fn textured(t: Texture) -> Emission {
+        Emission {
+            radiance: Spectrum::ONE,
+            texture: Some(Arc::new(t)),
             two_sided: false,
         }
     }
@@ -90,10 +105,25 @@ impl SceneBuilder {
     pub fn shape(&mut self, shape: Shape, material: u32, emission: Option<Emission>) -> &mut Self {
         let light = match emission {
             Some(e) => {
+                let texture = match e.texture {
+                    Some(t) => match EmissionTexture::new((*t).clone(), &shape) {
+                        Ok(t) => Some(Arc::new(t)),
+                        Err(e) => {
+                            self.errors.push(format!(
+                                "a radiance texture cannot emit from a {} (only rectangles, \
+                                 disks and spheres have texture coordinates of their own)",
+                                e.0
+                            ));
+                            None
+                        }
+                    },
+                    None => None,
+                };
                 self.lights.push(Light::Area(AreaLight {
                     shape,
                     radiance: e.radiance,
                     two_sided: e.two_sided,
+                    texture,
                 }));
                 self.lights.len() as u32 - 1
             }
@@ -180,7 +210,7 @@ impl SceneBuilder {
                 mesh: mesh_index,
                 index: i as u32,
             };
-            self.shape(Shape::Triangle(tri), material, emission);
+            self.shape(Shape::Triangle(tri), material, emission.clone());
         }
         self.meshes.push(mesh);
         self
@@ -224,6 +254,11 @@ impl SceneBuilder {
             ..Mesh::default()
         };
         let light_index = match emission {
+            Some(e) if e.texture.is_some() => {
+                self.errors
+                    .push("a radiance texture cannot emit from a polygon".to_owned());
+                NO_LIGHT
+            }
             Some(e) => {
                 self.lights.push(Light::Polygon(PolygonLight {
                     radiance: e.radiance,

@@ -128,6 +128,7 @@ pub fn light(shape: TestShape, strategy: LightSampling) -> TestLight {
             shape: shape_of(shape),
             radiance,
             two_sided: false,
+            texture: None,
         }),
     };
     TestLight {
@@ -202,7 +203,7 @@ pub fn hit(light: &Light, at: &ShadingPoint, w: Vec3) -> Option<(Vec3, Vec3)> {
 /// the light's back): the density of the directions `sample` returns.
 pub fn direction_pdf(light: &TestLight, at: &ShadingPoint, w: Vec3) -> f32 {
     match hit(&light.light, at, w) {
-        Some((y, ny)) if at.n.dot(w) > 0.0 && light.light.emitted(ny, -w) != Spectrum::ZERO => {
+        Some((y, ny)) if at.n.dot(w) > 0.0 && light.light.emitted(y, ny, -w) != Spectrum::ZERO => {
             light.pdf(at, y, ny)
         }
         _ => 0.0,

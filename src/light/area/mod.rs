@@ -12,11 +12,15 @@ mod rectangle;
 mod sphere;
 mod sphere_geometric;
 mod strategies;
+mod textured;
 mod triangle;
 
 pub(crate) use cosine_warp::{pdf as warped_pdf, sample as warped_sample};
 pub use strategies::{EmitterKind, UnsupportedSampling, check_sampling, sampling_summary};
+pub use textured::{EmissionTexture, UntexturableShape, uv_at as texture_uv_at};
 pub(crate) use triangle::{cosine_weights, safe_spherical_triangle};
+
+use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
 
@@ -26,16 +30,18 @@ use crate::math::{PI, Spectrum, spectrum::luminance};
 
 pub use crate::settings::LightSampling;
 
-/// A diffuse emitter of constant radiance on one shape (a mesh emits as one light per
-/// triangle).
+/// A diffuse emitter on one shape (a mesh emits as one light per triangle), of constant
+/// radiance or of a radiance texture.
 #[derive(Clone, Debug)]
 pub struct AreaLight {
     /// The emitting shape.
     pub shape: Shape,
-    /// Emitted radiance.
+    /// Emitted radiance (a factor on the texture's value when there is one).
     pub radiance: Spectrum,
     /// Emits from both sides (default: only the front, the side of the normal).
     pub two_sided: bool,
+    /// A radiance texture and its sampling grid.
+    pub texture: Option<Arc<EmissionTexture>>,
 }
 
 /// A point drawn on a light: the point, its geometric normal and the density per
@@ -54,12 +60,19 @@ pub struct LightPoint {
 /// `area`: p_ω = (1/A)·|x − y|²/|cos θy|.
 #[inline]
 pub fn uniform_area_pdf(x: Vec3, y: Vec3, ny: Vec3, area: f32) -> f32 {
+    area_pdf_to_solid_angle(x, y, ny, 1.0 / area)
+}
+
+/// Density per steradian at `x` of a point `y` (normal `ny`) drawn with density
+/// `pdf_area` per unit area.
+#[inline]
+fn area_pdf_to_solid_angle(x: Vec3, y: Vec3, ny: Vec3, pdf_area: f32) -> f32 {
     let d = y - x;
     let dist2 = d.length_squared();
     if dist2.is_nan() || dist2 <= 0.0 {
         return 0.0;
     }
-    super::area_to_solid_angle(1.0 / area, dist2, ny.dot(d) / dist2.sqrt())
+    super::area_to_solid_angle(pdf_area, dist2, ny.dot(d) / dist2.sqrt())
 }
 
 /// Radiance a diffuse emitter of radiance `l` sends from a point with normal `n` in
@@ -87,21 +100,48 @@ pub(crate) fn hit_plane(x: Vec3, w: Vec3, o: Vec3, n: Vec3) -> Option<Vec3> {
 }
 
 impl AreaLight {
-    /// The strategy in use when `sampling` is asked for: resolved for this shape.
+    /// A one-sided emitter of constant radiance `radiance` on `shape`.
+    pub fn new(shape: Shape, radiance: Spectrum) -> AreaLight {
+        AreaLight {
+            shape,
+            radiance,
+            two_sided: false,
+            texture: None,
+        }
+    }
+
+    /// The strategy in use when `sampling` is asked for: resolved for this shape. On a
+    /// textured emitter `best` is `area`, which there samples ∝ emitted power (the
+    /// directional strategies cannot see the texture).
     #[inline]
     pub fn strategy(&self, sampling: LightSampling) -> LightSampling {
+        if self.texture.is_some() && sampling == LightSampling::Best {
+            return LightSampling::Area;
+        }
         sampling.resolve(EmitterKind::of(&self.shape))
     }
 
-    /// Radiance leaving a point with normal `ny` in direction `w`.
+    /// Radiance leaving the point `y` (normal `ny`) in direction `w`.
     #[inline]
-    pub fn emitted(&self, ny: Vec3, w: Vec3) -> Spectrum {
-        diffuse_emitted(self.radiance, self.two_sided, ny, w)
+    pub fn emitted(&self, y: Vec3, ny: Vec3, w: Vec3) -> Spectrum {
+        let l = diffuse_emitted(self.radiance, self.two_sided, ny, w);
+        match &self.texture {
+            Some(t) if l != Spectrum::ZERO => l * t.eval(&self.shape, y),
+            _ => l,
+        }
     }
 
-    /// Power Φ = π·L·A (×2 when two-sided), as luminance.
+    /// The radiance averaged over the surface (the constant radiance when untextured).
+    pub fn mean_radiance(&self) -> Spectrum {
+        match &self.texture {
+            Some(t) => self.radiance * t.mean(),
+            None => self.radiance,
+        }
+    }
+
+    /// Power Φ = π·L̄·A (×2 when two-sided), as luminance.
     pub fn power(&self) -> f32 {
-        diffuse_power(self.radiance, self.two_sided, self.shape.area())
+        diffuse_power(self.mean_radiance(), self.two_sided, self.shape.area())
     }
 
     /// Samples a point on the light with strategy `sampling` (resolved for the shape) and
@@ -129,13 +169,24 @@ impl AreaLight {
         reject_below_horizon: bool,
     ) -> Option<LightSample> {
         let strategy = self.strategy(sampling);
-        let point = match &self.shape {
-            Shape::Sphere(s) => sphere::sample(s, strategy, at, u),
-            Shape::Rectangle(r) => rectangle::sample(r, strategy, at, u),
-            Shape::Triangle(t) => triangle::sample(t, strategy, at, u),
-            Shape::Disk(d) => disk::sample(d, at, u),
-        }?;
-        light_sample(at, point, reject_below_horizon, |ny, w| self.emitted(ny, w))
+        let point = match (&self.shape, &self.texture) {
+            (shape, Some(t)) if strategy == LightSampling::Area => {
+                let (y, ny, pdf_area) = t.sample(shape, u)?;
+                LightPoint {
+                    y,
+                    ny,
+                    pdf: area_pdf_to_solid_angle(at.p, y, ny, pdf_area),
+                }
+            }
+            (Shape::Sphere(s), _) => sphere::sample(s, strategy, at, u)?,
+            (Shape::Rectangle(r), _) => rectangle::sample(r, strategy, at, u)?,
+            (Shape::Triangle(t), _) => triangle::sample(t, strategy, at, u)?,
+            (Shape::Disk(d), _) => disk::sample(d, at, u)?,
+        };
+        let y = point.y;
+        light_sample(at, point, reject_below_horizon, |ny, w| {
+            self.emitted(y, ny, w)
+        })
     }
 
     /// Density per steradian at `at` of choosing the direction towards `y` (a point on
@@ -143,6 +194,9 @@ impl AreaLight {
     #[inline]
     pub fn pdf(&self, at: &ShadingPoint, y: Vec3, ny: Vec3, sampling: LightSampling) -> f32 {
         let strategy = self.strategy(sampling);
+        if let (Some(t), LightSampling::Area) = (&self.texture, strategy) {
+            return area_pdf_to_solid_angle(at.p, y, ny, t.pdf(&self.shape, y));
+        }
         match &self.shape {
             Shape::Sphere(s) => sphere::pdf(s, strategy, at, y, ny),
             Shape::Rectangle(r) => rectangle::pdf(r, strategy, at, y, ny),

@@ -148,16 +148,29 @@ pub fn check_sampling(
 /// (an estimator that samples no lights).
 pub fn sampling_summary(lights: &[Light], sampling: Option<LightSampling>) -> String {
     let plural = |n: usize, word: &str| format!("{n} {word}{}", if n == 1 { "" } else { "s" });
+    let textured = |l: &Light| matches!(l, Light::Area(a) if a.texture.is_some());
     let mut parts = Vec::new();
     for kind in EmitterKind::ALL {
-        let n = lights
-            .iter()
-            .filter(|l| EmitterKind::of_light(l) == Some(kind))
-            .count();
-        match (n, sampling) {
-            (0, _) => {}
-            (_, Some(s)) => parts.push(format!("{} ({})", plural(n, kind.name()), s.resolve(kind))),
-            (_, None) => parts.push(plural(n, kind.name())),
+        // Textured emitters apart: `best` samples them by emitted power (`area`).
+        for with_texture in [false, true] {
+            let n = lights
+                .iter()
+                .filter(|l| EmitterKind::of_light(l) == Some(kind) && textured(l) == with_texture)
+                .count();
+            let word = if with_texture {
+                format!("textured {}", kind.name())
+            } else {
+                kind.name().to_owned()
+            };
+            let strategy = |s: LightSampling| match s {
+                LightSampling::Best if with_texture => LightSampling::Area,
+                s => s.resolve(kind),
+            };
+            match (n, sampling) {
+                (0, _) => {}
+                (_, Some(s)) => parts.push(format!("{} ({})", plural(n, &word), strategy(s))),
+                (_, None) => parts.push(plural(n, &word)),
+            }
         }
     }
     let is_point: fn(&Light) -> bool = |l| matches!(l, Light::Point(_));

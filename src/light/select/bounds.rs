@@ -141,7 +141,7 @@ impl Light {
                 two_sided: false,
             },
             Light::Area(l) => {
-                let radiance = luminance(l.radiance).max(0.0);
+                let radiance = luminance(l.mean_radiance()).max(0.0);
                 let (w, cos_theta_o, phi) = match &l.shape {
                     Shape::Sphere(s) => (Vec3::Z, -1.0, radiance * PI * s.radius * s.radius),
                     Shape::Rectangle(r) => (r.normal, 1.0, radiance * r.area()),
@@ -213,6 +213,7 @@ mod tests {
             shape: Shape::Sphere(Sphere { center, radius }),
             radiance: Spectrum::ONE,
             two_sided: false,
+            texture: None,
         })
     }
 
@@ -251,6 +252,7 @@ mod tests {
             shape: Shape::Rectangle(quad),
             radiance: Spectrum::ONE,
             two_sided: false,
+            texture: None,
         });
         assert!(quad.bounds().w.x < 0.0);
         assert!(quad.bounds().importance(&p) > 0.0);
@@ -276,6 +278,7 @@ mod tests {
             shape: Shape::Rectangle(quad),
             radiance: Spectrum::ONE,
             two_sided: false,
+            texture: None,
         });
         assert!(quad.bounds().w.y > 0.0);
         assert_eq!(quad.bounds().importance(&p), 0.0);

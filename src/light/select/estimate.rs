@@ -54,7 +54,7 @@ impl Light {
                 (radiance * l.polygon.area() * cos_x * cos_y / dist2).min(PI * radiance)
             }
             Light::Area(l) => {
-                let radiance = luminance(l.radiance);
+                let radiance = luminance(l.mean_radiance());
                 let (center, normal, area) = match &l.shape {
                     Shape::Sphere(s) => {
                         let d = s.center - at.p;
@@ -95,6 +95,7 @@ mod tests {
             shape,
             radiance: Spectrum::splat(2.0),
             two_sided: false,
+            texture: None,
         })
     }
 

@@ -119,6 +119,7 @@ mod tests {
             }),
             radiance: Spectrum::splat(radiance),
             two_sided: false,
+            texture: None,
         })
     }
 

@@ -39,7 +39,7 @@ const MAX_BSDF_NESTING: usize = 16;
 pub struct Context<'a> {
     ids: HashMap<&'a str, &'a Element>,
     materials: HashMap<*const Element, u32>,
-    default_material: Option<u32>,
+    default_material: [Option<u32>; 2],
     has_environment: bool,
     /// The BSDFs being built, outermost first: a `<ref>` to one of them is a cycle.
     building: Vec<&'a Element>,
@@ -102,15 +102,18 @@ impl<'a> Context<'a> {
         Ok(m)
     }
 
-    /// Mitsuba's default BSDF: diffuse with reflectance 0.5.
-    pub fn default_material(&mut self) -> u32 {
-        if let Some(m) = self.default_material {
+    /// Mitsuba's default BSDF for a shape that names none: diffuse with reflectance 0.5,
+    /// or 0 when the shape `emits` (Mitsuba 3's `Shape` constructor: an emitter without a
+    /// BSDF reflects nothing).
+    pub fn default_material(&mut self, emits: bool) -> u32 {
+        if let Some(m) = self.default_material[emits as usize] {
             return m;
         }
+        let reflectance = if emits { 0.0 } else { 0.5 };
         let m = self.builder.material(Material::Diffuse(Diffuse {
-            reflectance: Spectrum::splat(0.5),
+            reflectance: Spectrum::splat(reflectance),
         }));
-        self.default_material = Some(m);
+        self.default_material[emits as usize] = Some(m);
         m
     }
 
@@ -236,7 +239,7 @@ pub fn build(
     let mut ctx = Context {
         ids,
         materials: HashMap::new(),
-        default_material: None,
+        default_material: [None; 2],
         has_environment: false,
         building: Vec::new(),
         options,

@@ -5,6 +5,7 @@
 use glam::{Mat3, Mat4, Vec3};
 
 use super::XmlError;
+use super::bitmap::load_bitmap;
 use super::build::Context;
 use super::props::Props;
 use super::tree::Element;
@@ -33,7 +34,8 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
     let ty = el.required("type")?;
     let p = Props::new(el)?;
     let mut material = None;
-    let mut emission = None;
+    let mut emission: Option<Emission> = None;
+    let mut emitter_el = None;
     for c in p.nested() {
         let target = ctx.resolve(c, &["bsdf", "emitter"])?;
         if target.tag == "bsdf" {
@@ -46,11 +48,28 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
                 return Err(c.error("a shape takes one emitter"));
             }
             emission = Some(area_emitter(ctx, target)?);
+            emitter_el = Some(c);
         }
+    }
+    let textured = emission.as_ref().is_some_and(|e| e.texture.is_some());
+    let refuse_texture = |what: &str| {
+        emitter_el.map_or_else(
+            || el.error("a textured radiance needs a shape with texture coordinates"),
+            |e| {
+                e.error(format!(
+                    "a textured radiance can emit from a rectangle, disk or sphere, not from \
+                     {what} (lightlab samples it by power over the shape's own texture \
+                     coordinates)"
+                ))
+            },
+        )
+    };
+    if textured && !matches!(ty, "rectangle" | "disk" | "sphere") {
+        return Err(refuse_texture(&format!("a \"{ty}\" shape")));
     }
     let material = match material {
         Some(m) => m,
-        None => ctx.default_material(),
+        None => ctx.default_material(emission.is_some()),
     };
     let to_world = p.transform("to_world")?;
     let flip = p.bool("flip_normals", false)?;
@@ -72,6 +91,15 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
             })?;
             if flip {
                 return Err(p.error_at("flip_normals", "flip_normals on a sphere is not supported"));
+            }
+            // A sphere's texture coordinates are taken in world axes; Mitsuba takes them
+            // in the sphere's own, so a rotated textured emitter would come out turned.
+            if textured && !(linear / scale).abs_diff_eq(Mat3::IDENTITY, TOLERANCE) {
+                return Err(p.error_at(
+                    "to_world",
+                    "a sphere with a textured radiance cannot be rotated (its texture \
+                     coordinates are taken in world axes)",
+                ));
             }
             // Mitsuba 3 takes a negative radius as a sphere with inward normals; lightlab
             // has no inward-facing sphere, so it refuses the radius rather than render a
@@ -108,6 +136,9 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
                 // A sheared rectangle is a parallelogram: two triangles, wound so that
                 // their normal is n.
                 None => {
+                    if textured {
+                        return Err(refuse_texture("a sheared rectangle"));
+                    }
                     if flipped {
                         std::mem::swap(&mut ea, &mut eb);
                     }
@@ -197,9 +228,17 @@ fn area_emitter<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<Emission, 
         )));
     }
     let p = Props::new(el)?;
-    let radiance = p.emission("radiance", Spectrum::ONE)?;
+    // Mitsuba 3 takes any texture as `radiance`; lightlab takes a bitmap (nested or by
+    // ref), decoded as for reflectances.
+    let emission = match p.texture("radiance") {
+        Some(t) => {
+            let t = ctx.resolve(t, &["texture"])?;
+            Emission::textured(load_bitmap(t, ctx)?)
+        }
+        None => Emission::new(p.emission("radiance", Spectrum::ONE)?),
+    };
     ctx.finish(&p)?;
-    Ok(Emission::new(radiance))
+    Ok(emission)
 }
 
 /// The scale s when `m` = s · rotation.
