@@ -69,6 +69,7 @@ fn main() {
         NearPlaneEmitter::Rectangle,
         NearPlaneEmitter::Mesh,
         NearPlaneEmitter::Polygon,
+        NearPlaneEmitter::Disk,
     ] {
         let scene = build_with(&[emitter]).expect("scene");
         let mut settings = RenderSettings::for_scene(&scene);

@@ -3,6 +3,7 @@
 //! Vectors themselves come from `glam`.
 
 pub mod atan;
+pub mod elliptic;
 pub mod frame;
 pub mod spectrum;
 pub mod texture;

@@ -40,7 +40,7 @@ pub const STRATEGIES: [(TestShape, &[LightSampling]); 5] = {
         (TestShape::Rectangle, &[Area, SolidAngle, SolidAngleCos]),
         (TestShape::Triangle, &[Area, SolidAngle, SolidAngleCos]),
         (TestShape::Polygon, &[Area, SolidAngle, SolidAngleCos]),
-        (TestShape::Disk, &[Area]),
+        (TestShape::Disk, &[Area, SolidAngle]),
     ]
 };
 

@@ -2,8 +2,9 @@
 """Writes the small meshes and textures the conformance scenes use (run once; outputs are
 committed): meshes/torus.obj (no normals: Mitsuba smooths it), meshes/ball.ply (binary,
 normals and uv), meshes/shapes.serialized (two shapes, version 4, zlib), and
-textures/checker.png, textures/quadrants.jpg (flat 8x8 blocks, so JPEG decoders agree),
-textures/ramp.exr and textures/sky.exr (a lat-long sky with a small sun; needs Pillow and
+textures/checker.png, textures/quadrants.jpg (flat 8x8 blocks; JPEG decoders still differ by
+up to 2 codes per channel, IDCT and chroma rounding, so scenes that show a texture directly
+use PNG), textures/spots.png (a dim field with one bright 2x2 spot), textures/ramp.exr and textures/sky.exr (a lat-long sky with a small sun; needs Pillow and
 mitsuba). meshes/quad_uv.obj is written by hand."""
 import math
 import os
@@ -98,6 +99,11 @@ def textures():
         for x in range(16):
             im.putpixel((x, y), cols[(y // 8) * 2 + x // 8])
     im.save(os.path.join(d, "quadrants.jpg"), quality=95)
+    im = Image.new("RGB", (16, 8), (40, 40, 60))
+    for y in (2, 3):
+        for x in (5, 6):
+            im.putpixel((x, y), (255, 230, 150))
+    im.save(os.path.join(d, "spots.png"))
     ramp = []
     for y in range(2):
         for x in range(4):

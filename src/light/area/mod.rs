@@ -110,15 +110,17 @@ impl AreaLight {
         }
     }
 
-    /// The strategy in use when `sampling` is asked for: resolved for this shape. On a
-    /// textured emitter `best` is `area`, which there samples ∝ emitted power (the
-    /// directional strategies cannot see the texture).
+    /// The strategy in use when `sampling` is asked for: resolved for this shape (on a
+    /// textured emitter by [`LightSampling::resolve_textured`]; there `area` samples ∝
+    /// emitted power).
     #[inline]
     pub fn strategy(&self, sampling: LightSampling) -> LightSampling {
-        if self.texture.is_some() && sampling == LightSampling::Best {
-            return LightSampling::Area;
+        let kind = EmitterKind::of(&self.shape);
+        if self.texture.is_some() {
+            sampling.resolve_textured(kind)
+        } else {
+            sampling.resolve(kind)
         }
-        sampling.resolve(EmitterKind::of(&self.shape))
     }
 
     /// Radiance leaving the point `y` (normal `ny`) in direction `w`.
@@ -181,7 +183,7 @@ impl AreaLight {
             (Shape::Sphere(s), _) => sphere::sample(s, strategy, at, u)?,
             (Shape::Rectangle(r), _) => rectangle::sample(r, strategy, at, u)?,
             (Shape::Triangle(t), _) => triangle::sample(t, strategy, at, u)?,
-            (Shape::Disk(d), _) => disk::sample(d, at, u)?,
+            (Shape::Disk(d), _) => disk::sample(d, strategy, at, u)?,
         };
         let y = point.y;
         light_sample(at, point, reject_below_horizon, |ny, w| {
@@ -201,7 +203,7 @@ impl AreaLight {
             Shape::Sphere(s) => sphere::pdf(s, strategy, at, y, ny),
             Shape::Rectangle(r) => rectangle::pdf(r, strategy, at, y, ny),
             Shape::Triangle(t) => triangle::pdf(t, strategy, at, y, ny),
-            Shape::Disk(d) => uniform_area_pdf(at.p, y, ny, d.area()),
+            Shape::Disk(d) => disk::pdf(d, strategy, at, y, ny),
         }
     }
 }

@@ -65,8 +65,8 @@ impl EmitterKind {
 
     /// The strategies this shape implements (`best` picks one of them): the lecture's
     /// p₁…p₄ on spheres; area, solid angle (Ureña et al. 2013, Arvo 1995) and solid angle
-    /// after the bilinear cosine warp (Hart et al. 2020) on planar shapes; only area on
-    /// disks.
+    /// after the bilinear cosine warp (Hart et al. 2020) on planar shapes; area and solid
+    /// angle on disks.
     pub fn strategies(self) -> &'static [LightSampling] {
         use LightSampling::*;
         match self {
@@ -74,21 +74,27 @@ impl EmitterKind {
             EmitterKind::Rectangle | EmitterKind::Triangle | EmitterKind::Polygon => {
                 &[Area, SolidAngle, SolidAngleCos]
             }
-            EmitterKind::Disk => &[Area],
+            EmitterKind::Disk => &[Area, SolidAngle],
         }
     }
 }
 
 impl LightSampling {
     /// The strategy that runs on a shape of kind `kind`: `best` is solid angle on every
-    /// shape that has it (disks have only `area`); any other name runs as itself where
+    /// shape but the disk, where it is area; any other name runs as itself where
     /// [`check_sampling`] allowed it (renders refuse the rest before they start). Measured on
     /// `sphere-near-plane`, one emitter at a time, relMSE at 16 spp (light estimator;
     /// `examples/light_strategies.rs`): sphere area 2.6e-2, visible-area 3.7e-4,
     /// solid-angle 1.0e-4, geometric 6.4e-5; rectangle area 2.4e-2, solid-angle 2.6e-4;
     /// mesh 1.9e-3 vs 6.0e-4; polygon 1.2e-2 vs 1.2e-4. On spheres `geometric` is lower
     /// still but costs 6.5× as much per sample (775 vs 118 ns), which more than eats its
-    /// 1.6× gain, so `best` is solid angle.
+    /// 1.6× gain, so `best` is solid angle. On disks solid angle (rejection from the
+    /// circumscribed square's spherical rectangle, Ω from elliptic integrals) leaves 2.4×
+    /// less relMSE at 16 spp (3.5e-4 vs 8.5e-4, `sphere-near-plane?emitters=disk`, where
+    /// area's error is a few outliers) but only 1.07× less at 256 spp (1.56e-5 vs
+    /// 1.67e-5, against 8192 spp of another seed), and costs 8.5× per light sample (348
+    /// vs 41 ns) and 2.6× per render (5.8 vs 2.2 s at 256 spp, light estimator): at
+    /// equal time area wins, and stays `best`.
     pub fn resolve(self, kind: EmitterKind) -> LightSampling {
         match self {
             LightSampling::Best if kind == EmitterKind::Disk => LightSampling::Area,
@@ -97,6 +103,22 @@ impl LightSampling {
             // Unreachable in a render (`check_sampling` refused it); library callers
             // that skip the check get area, the one strategy every shape has.
             _ => LightSampling::Area,
+        }
+    }
+}
+
+impl LightSampling {
+    /// [`LightSampling::resolve`] for an emitter with a radiance texture: there `best` is
+    /// `area`, which samples ∝ emitted power, except on spheres, where area sampling
+    /// spends half its samples on the far side. Measured on `textured_emitter.xml`, one
+    /// emitter at a time, relMSE at 64 spp: checker rectangle area 6.2e-4 vs
+    /// (texture-blind) solid-angle 5.8e-4 at 1.3× the time, and 5.2e-5 vs 7.8e-5 with a
+    /// bright spot instead; disk 2.1e-4 vs 1.9e-4 at 1.5× the time; a sphere with four
+    /// colour quadrants 4.7e-4 vs 1.05e-4 at the same time (BENCHMARKS.md).
+    pub fn resolve_textured(self, kind: EmitterKind) -> LightSampling {
+        match self {
+            LightSampling::Best if kind != EmitterKind::Sphere => LightSampling::Area,
+            s => s.resolve(kind),
         }
     }
 }
@@ -162,9 +184,12 @@ pub fn sampling_summary(lights: &[Light], sampling: Option<LightSampling>) -> St
             } else {
                 kind.name().to_owned()
             };
-            let strategy = |s: LightSampling| match s {
-                LightSampling::Best if with_texture => LightSampling::Area,
-                s => s.resolve(kind),
+            let strategy = |s: LightSampling| {
+                if with_texture {
+                    s.resolve_textured(kind)
+                } else {
+                    s.resolve(kind)
+                }
             };
             match (n, sampling) {
                 (0, _) => {}

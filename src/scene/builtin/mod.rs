@@ -87,7 +87,7 @@ pub fn build(name: &str) -> Result<Scene, SceneError> {
 }
 
 /// `NAME?key=value`: `many-lights?n=N` (luminaire count) and
-/// `sphere-near-plane?emitters=A,B` (a subset of sphere, rectangle, mesh, polygon).
+/// `sphere-near-plane?emitters=A,B` (a subset of sphere, rectangle, mesh, polygon, disk).
 fn build_with_query(spec: &str, base: &str, query: &str) -> Result<Scene, SceneError> {
     let err = |m: String| SceneError::new(format!("builtin:{spec}"), None, m);
     if base == "sphere-near-plane" {
@@ -127,8 +127,9 @@ fn near_plane_with_query(query: &str) -> Result<Scene, String> {
             "rectangle" => Ok(E::Rectangle),
             "mesh" => Ok(E::Mesh),
             "polygon" => Ok(E::Polygon),
+            "disk" => Ok(E::Disk),
             other => Err(format!(
-                "unknown emitter \"{other}\" (known: sphere, rectangle, mesh, polygon)"
+                "unknown emitter \"{other}\" (known: sphere, rectangle, mesh, polygon, disk)"
             )),
         })
         .collect::<Result<Vec<_>, _>>()?;

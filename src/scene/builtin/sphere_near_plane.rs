@@ -27,6 +27,10 @@ pub enum NearPlaneEmitter {
     /// A concave L-shaped polygon, tilted, 0.1 above the floor at its low edge (not in
     /// the built-in scene; for measurements of polygon strategies).
     Polygon,
+    /// A disk of radius 0.5 facing down and towards +z (tilted 30°), 0.1 above the floor
+    /// at its lowest point (not in the built-in scene; for measurements of disk
+    /// strategies).
+    Disk,
 }
 
 /// The emitters of the built-in scene.
@@ -93,6 +97,18 @@ pub fn build_with(emitters: &[NearPlaneEmitter]) -> Result<Scene, SceneError> {
                     .map(|&(x, y)| Vec3::new(-0.5 + x, 0.1 + y * s, 0.6 - y * c))
                     .collect();
                 b.polygon(&vertices, dark, emit(2.0, 2.0, 2.0));
+            }
+            NearPlaneEmitter::Disk => {
+                let (s, c) = 30f32.to_radians().sin_cos();
+                let normal = Vec3::new(0.0, -c, s);
+                let r = 0.5;
+                b.disk(
+                    Vec3::new(0.0, 0.1 + r * s, 0.2),
+                    normal,
+                    r,
+                    dark,
+                    emit(2.0, 2.0, 2.0),
+                );
             }
         }
     }
