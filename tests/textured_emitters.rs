@@ -61,10 +61,7 @@ fn disk() -> Shape {
 }
 
 fn sphere() -> Shape {
-    Shape::Sphere(Sphere {
-        center: Vec3::new(0.0, 0.0, 1.0),
-        radius: 0.5,
-    })
+    Shape::Sphere(Sphere::new(Vec3::new(0.0, 0.0, 1.0), 0.5))
 }
 
 /// Every shape with nearest and bilinear textures, aligned and transformed.

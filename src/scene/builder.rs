@@ -145,7 +145,11 @@ impl SceneBuilder {
         material: u32,
         emission: Option<Emission>,
     ) -> &mut Self {
-        self.shape(Shape::Sphere(Sphere { center, radius }), material, emission)
+        self.shape(
+            Shape::Sphere(Sphere::new(center, radius)),
+            material,
+            emission,
+        )
     }
 
     /// Adds a rectangle with corner `o` and perpendicular edges `ea`, `eb` (front side

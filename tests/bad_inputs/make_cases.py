@@ -148,7 +148,7 @@ XML = [
     # A textured radiance needs the shape's own texture coordinates (issue 18).
     ("texture-radiance-on-cube", scene('<shape type="cube">⟦<emitter type="area"><texture type="bitmap" name="radiance"><string name="filename" value="../img/checker.png"/></texture></emitter></shape>'), 'textured radiance;rectangle, disk or sphere;"cube"'),
     ("texture-radiance-sheared-rectangle", scene('<shape type="rectangle"><transform name="to_world"><matrix value="1 0.5 0 0 0 1 0 0 0 0 1 0 0 0 0 1"/></transform>⟦<emitter type="area"><texture type="bitmap" name="radiance"><string name="filename" value="../img/checker.png"/></texture></emitter></shape>'), "sheared rectangle"),
-    ("texture-radiance-rotated-sphere", scene('<shape type="sphere">⟦<transform name="to_world"><rotate x="1" angle="30"/></transform><emitter type="area"><texture type="bitmap" name="radiance"><string name="filename" value="../img/checker.png"/></texture></emitter></shape>'), "cannot be rotated"),
+    ("sphere-mirrored", scene('<shape type="sphere">⟦<transform name="to_world"><scale x="-1"/></transform></shape>'), "mirroring to_world;inward"),
     ("texture-radiance-not-bitmap", scene(SPHERE.format('<emitter type="area">⟦<texture type="checkerboard" name="radiance"/></emitter>')), 'texture "checkerboard" is not supported'),
     ("colour-negative", scene(BSDF.format("diffuse", '⟦<rgb name="reflectance" value="-1 0 0"/>')), "negative colour"),
     ("colour-two-numbers", scene(BSDF.format("diffuse", '⟦<rgb name="reflectance" value="0.1 0.2"/>')), "rgb needs 1 or 3 numbers"),

@@ -77,10 +77,7 @@ pub fn outline(shape: TestShape) -> Option<Vec<Vec3>> {
 
 fn shape_of(shape: TestShape) -> Shape {
     match shape {
-        TestShape::Sphere => Shape::Sphere(Sphere {
-            center: Vec3::new(0.0, 0.0, 1.0),
-            radius: 0.5,
-        }),
+        TestShape::Sphere => Shape::Sphere(Sphere::new(Vec3::new(0.0, 0.0, 1.0), 0.5)),
         TestShape::Rectangle => Shape::Rectangle(
             Rectangle::new(Vec3::new(-0.5, -0.5, 1.0), Vec3::Y, Vec3::X).expect("square"),
         ),

@@ -4,7 +4,7 @@ use glam::{Vec2, Vec3};
 
 use super::ShapeHit;
 use crate::geometry::{Aabb, Ray};
-use crate::math::PI;
+use crate::math::{Frame, PI};
 
 /// A sphere; its normal points outward.
 #[derive(Clone, Copy, Debug)]
@@ -13,9 +13,25 @@ pub struct Sphere {
     pub center: Vec3,
     /// Radius (> 0).
     pub radius: f32,
+    /// The sphere's own axes (Mitsuba: the rotation in its `to_world`), in which its
+    /// texture coordinates are measured; orthonormal, possibly mirrored.
+    pub axes: Frame,
 }
 
 impl Sphere {
+    /// A sphere with the world's axes.
+    pub fn new(center: Vec3, radius: f32) -> Sphere {
+        Sphere {
+            center,
+            radius,
+            axes: Frame {
+                s: Vec3::X,
+                t: Vec3::Y,
+                n: Vec3::Z,
+            },
+        }
+    }
+
     /// Bounding box.
     pub fn bounds(&self) -> Aabb {
         Aabb {
@@ -67,10 +83,11 @@ impl Sphere {
         Some(ShapeHit { t, uv: Vec2::ZERO })
     }
 
-    /// Mitsuba's sphere uv at the point `p` on the sphere: u = φ/2π, v = θ/π.
+    /// Mitsuba's sphere uv at the point `p` on the sphere: u = φ/2π, v = θ/π, with θ and
+    /// φ the spherical angles of the normal in the sphere's own axes.
     #[inline]
     pub fn uv_at(&self, p: Vec3) -> Vec2 {
-        let n = self.normal_at(p);
+        let n = self.axes.to_local(self.normal_at(p));
         let phi = n.y.atan2(n.x);
         Vec2::new(
             if phi < 0.0 { phi + 2.0 * PI } else { phi } / (2.0 * PI),
@@ -85,10 +102,7 @@ mod tests {
 
     #[test]
     fn hits_from_outside_and_inside() {
-        let s = Sphere {
-            center: Vec3::new(0.0, 0.0, 5.0),
-            radius: 1.0,
-        };
+        let s = Sphere::new(Vec3::new(0.0, 0.0, 5.0), 1.0);
         let h = s
             .intersect(&Ray::new(Vec3::ZERO, Vec3::Z), 100.0)
             .expect("hit");
@@ -98,10 +112,7 @@ mod tests {
             .expect("inside hit");
         assert!((h.t - 1.0).abs() < 1e-5);
         assert!(s.intersect(&Ray::new(Vec3::ZERO, Vec3::X), 100.0).is_none());
-        let tiny = Sphere {
-            center: Vec3::new(1000.0, 0.0, 0.0),
-            radius: 1e-3,
-        };
+        let tiny = Sphere::new(Vec3::new(1000.0, 0.0, 0.0), 1e-3);
         let h = tiny
             .intersect(&Ray::new(Vec3::ZERO, Vec3::X), 1e4)
             .expect("tiny far");

@@ -162,10 +162,7 @@ mod tests {
 
     #[test]
     fn strategies_from_inside_fall_back_to_area() {
-        let s = Sphere {
-            center: Vec3::ZERO,
-            radius: 1.0,
-        };
+        let s = Sphere::new(Vec3::ZERO, 1.0);
         let at = ShadingPoint {
             p: Vec3::new(0.0, 0.0, 0.5),
             ng: Vec3::Z,

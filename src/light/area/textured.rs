@@ -10,7 +10,8 @@
 //!
 //! - rectangle (u, v along its edges): A/(n_u n_v);
 //! - disk (u = r/R, v = φ/2π): πR²(u₁² − u₀²)/n_v, sampled with u = √(u₀² + ξ(u₁² − u₀²));
-//! - sphere (u = φ/2π, v = θ/π): 2πr²(cos πv₀ − cos πv₁)/n_u, sampled uniformly in cos θ.
+//! - sphere (u = φ/2π, v = θ/π in its own axes): 2πr²(cos πv₀ − cos πv₁)/n_u, sampled
+//!   uniformly in cos θ.
 //!
 //! The bound is exact where the grid is the texel grid (the identity `to_uv`): a bilinear
 //! lookup is bilinear on each quarter of a texel, so its maximum over the texel is at one
@@ -229,7 +230,9 @@ fn place(shape: &Shape, nu: usize, nv: usize, i: usize, j: usize, t: Vec2) -> (V
             let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
             let phi = 2.0 * PI * (i as f32 + t.x) / nu_f;
             let (sp, cp) = phi.sin_cos();
-            let n = Vec3::new(sin_theta * cp, sin_theta * sp, cos_theta);
+            let n = s
+                .axes
+                .to_world(Vec3::new(sin_theta * cp, sin_theta * sp, cos_theta));
             (s.center + s.radius * n, n)
         }
         Shape::Triangle(tri) => (tri.p0, tri.normal()),

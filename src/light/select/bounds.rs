@@ -210,7 +210,7 @@ mod tests {
 
     fn sphere_light(center: Vec3, radius: f32) -> Light {
         Light::Area(AreaLight {
-            shape: Shape::Sphere(Sphere { center, radius }),
+            shape: Shape::Sphere(Sphere::new(center, radius)),
             radiance: Spectrum::ONE,
             two_sided: false,
             texture: None,

@@ -106,10 +106,7 @@ mod tests {
             ng: Vec3::Y,
             n: Vec3::Y,
         };
-        let s = area(Shape::Sphere(Sphere {
-            center: Vec3::new(0.0, 4.0, 0.0),
-            radius: 1.0,
-        }));
+        let s = area(Shape::Sphere(Sphere::new(Vec3::new(0.0, 4.0, 0.0), 1.0)));
         let e = s.contribution_estimate(&at);
         assert!((e - PI * 2.0 / 16.0).abs() < 1e-5, "{e}");
         // A small unit-area quad 10 above, facing down: ≈ L·A/d².
@@ -124,15 +121,9 @@ mod tests {
         let e = q.contribution_estimate(&at);
         assert!((e - 2.0 / 100.0).abs() < 1e-6, "{e}");
         // Touching the point: capped at π L, never infinite or NaN.
-        let touching = area(Shape::Sphere(Sphere {
-            center: Vec3::ZERO,
-            radius: 1.0,
-        }));
+        let touching = area(Shape::Sphere(Sphere::new(Vec3::ZERO, 1.0)));
         assert_eq!(touching.contribution_estimate(&at), 0.0);
-        let close = area(Shape::Sphere(Sphere {
-            center: Vec3::new(0.0, 1e-3, 0.0),
-            radius: 1.0,
-        }));
+        let close = area(Shape::Sphere(Sphere::new(Vec3::new(0.0, 1e-3, 0.0), 1.0)));
         assert!(close.contribution_estimate(&at) <= PI * 2.0);
     }
 }

@@ -113,10 +113,7 @@ mod tests {
 
     fn sphere(x: f32, radiance: f32) -> Light {
         Light::Area(AreaLight {
-            shape: Shape::Sphere(Sphere {
-                center: Vec3::new(x, 2.0, 0.0),
-                radius: 0.3,
-            }),
+            shape: Shape::Sphere(Sphere::new(Vec3::new(x, 2.0, 0.0), 0.3)),
             radiance: Spectrum::splat(radiance),
             two_sided: false,
             texture: None,

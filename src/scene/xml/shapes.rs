@@ -11,7 +11,7 @@ use super::props::Props;
 use super::tree::Element;
 use crate::geometry::Mesh;
 use crate::geometry::shape::{Disk, Rectangle, Shape, Sphere};
-use crate::math::Spectrum;
+use crate::math::{Frame, Spectrum};
 use crate::scene::builder::Emission;
 use crate::scene::mesh_io;
 
@@ -92,13 +92,13 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
             if flip {
                 return Err(p.error_at("flip_normals", "flip_normals on a sphere is not supported"));
             }
-            // A sphere's texture coordinates are taken in world axes; Mitsuba takes them
-            // in the sphere's own, so a rotated textured emitter would come out turned.
-            if textured && !(linear / scale).abs_diff_eq(Mat3::IDENTITY, TOLERANCE) {
+            // Mitsuba 3 turns a mirrored sphere's normals inward (its ray_intersect reports
+            // n = −(p − c) under scale x = −1), as for a negative radius.
+            if linear.determinant() < 0.0 {
                 return Err(p.error_at(
                     "to_world",
-                    "a sphere with a textured radiance cannot be rotated (its texture \
-                     coordinates are taken in world axes)",
+                    "a mirroring to_world turns a sphere's normals inward in Mitsuba 3, which \
+                     lightlab does not support",
                 ));
             }
             // Mitsuba 3 takes a negative radius as a sphere with inward normals; lightlab
@@ -114,9 +114,16 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
                     ),
                 ));
             }
+            // Texture coordinates are measured in the sphere's own axes: the rotation
+            // (or mirroring) part of to_world.
+            let rotation = linear / scale;
             let sphere = Sphere {
-                center: to_world.transform_point3(center),
-                radius: r,
+                axes: Frame {
+                    s: rotation.x_axis,
+                    t: rotation.y_axis,
+                    n: rotation.z_axis,
+                },
+                ..Sphere::new(to_world.transform_point3(center), r)
             };
             ctx.builder.shape(Shape::Sphere(sphere), material, emission);
         }
@@ -358,5 +365,19 @@ mod tests {
         assert!((ng_dm - glam::Vec3::Z).length() < 1e-5, "{ng_dm}");
         let (uv_df, ng_df) = hit("disk", flip);
         assert!((uv_df - uv_d).length() < 1e-5 && (ng_df + glam::Vec3::Z).length() < 1e-5);
+        // Spheres: uv in the sphere's own axes, which its to_world turns (Mitsuba 3.9:
+        // (0.926208, 0.188821) unrotated, (0.692291, 0.282183) rotated).
+        let (uv_s, _) = hit("sphere", "");
+        assert!(
+            (uv_s - glam::Vec2::new(0.926_208, 0.188_821)).length() < 1e-5,
+            "{uv_s}"
+        );
+        let turn = r#"<transform name="to_world"><rotate y="1" angle="70"/><rotate x="1" angle="-40"/></transform>"#;
+        let (uv_sr, ng_sr) = hit("sphere", turn);
+        assert!(
+            (uv_sr - glam::Vec2::new(0.692_291, 0.282_183)).length() < 1e-5,
+            "{uv_sr}"
+        );
+        assert!((ng_sr - glam::Vec3::new(0.5, -0.25, 0.829_156)).length() < 1e-5);
     }
 }
