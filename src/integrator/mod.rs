@@ -12,9 +12,10 @@ mod ris;
 
 pub use crate::settings::{DEFAULT_RIS_CANDIDATES, MAX_RIS_CANDIDATES};
 
-pub use mis::{MisHeuristic, MisSettings};
+pub use mis::{MisHeuristic, MisSettings, OptimalPixel, TechniqueMoments};
 pub use probe::{Probe, ProbeSample};
 
+use std::cell::RefCell;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use glam::Vec3;
@@ -125,11 +126,23 @@ impl Estimator {
     /// Radiance along a camera ray: emission seen directly plus one estimate of direct
     /// illumination at the first hit.
     pub fn radiance(&self, scene: &Scene, ray: &Ray, src: &mut impl Uniform) -> Spectrum {
+        self.radiance_in(scene, ray, src, None)
+    }
+
+    /// [`Estimator::radiance`] for a pixel whose optimal-MIS state is `optimal` (`--mis
+    /// optimal`: its α weights the estimate and its moments grow).
+    pub fn radiance_in(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        src: &mut impl Uniform,
+        optimal: Option<&RefCell<OptimalPixel>>,
+    ) -> Spectrum {
         let Some(hit) = scene.geometry.intersect(ray, f32::INFINITY) else {
             return scene.escaped(ray.d.normalize()); // the background: the environment
         };
         let w_out = -ray.d.normalize();
-        emitted_at(scene, &hit, w_out) + self.direct(scene, &hit, w_out, src)
+        emitted_at(scene, &hit, w_out) + self.direct_probed(scene, &hit, w_out, src, None, optimal)
     }
 
     /// One sample of reflected direct light L_out(x, ω_out) at a surface hit.
@@ -141,11 +154,12 @@ impl Estimator {
         w_out: Vec3,
         src: &mut impl Uniform,
     ) -> Spectrum {
-        self.direct_probed(scene, hit, w_out, src, None)
+        self.direct_probed(scene, hit, w_out, src, None, None)
     }
 
     /// [`Estimator::direct`], recording every sample it draws into `probe` when given
-    /// (`lightlab probe`).
+    /// (`lightlab probe`), and weighting by a pixel's optimal-MIS state `optimal` when
+    /// given (`--mis optimal`).
     #[inline(always)]
     pub fn direct_probed(
         &self,
@@ -154,6 +168,7 @@ impl Estimator {
         w_out: Vec3,
         src: &mut impl Uniform,
         probe: Option<&Probe>,
+        optimal: Option<&RefCell<OptimalPixel>>,
     ) -> Spectrum {
         let mut material = &scene.materials[hit.material as usize];
         let textured;
@@ -193,6 +208,7 @@ impl Estimator {
             ris: self.ris,
             shadow_rays: &self.shadow_rays,
             probe,
+            optimal,
         };
         match self.kind {
             EstimatorKind::Light => light::estimate(&ctx, src),
@@ -220,6 +236,8 @@ struct Context<'a> {
     shadow_rays: &'a ShadowRays,
     /// Where samples are recorded (`lightlab probe`), if anywhere.
     probe: Option<&'a Probe>,
+    /// The pixel's optimal-MIS state (`--mis optimal`), if any.
+    optimal: Option<&'a RefCell<OptimalPixel>>,
 }
 
 impl Context<'_> {

@@ -90,7 +90,7 @@ pub fn probe(
         // The render draws the pixel position first: keep the estimator's dimensions.
         let _ = sampler.next_2d();
         probe.start_sample(s);
-        let v = estimator.direct_probed(scene, &hit, w_out, &mut sampler, Some(&probe));
+        let v = estimator.direct_probed(scene, &hit, w_out, &mut sampler, Some(&probe), None);
         let v = if v.is_finite() { v } else { Spectrum::ZERO };
         sum += v;
         sum2 += v * v;

@@ -6,7 +6,9 @@ mod settings;
 pub use crate::settings::{Pass, SampleBlock};
 pub use settings::RenderSettings;
 
+use std::cell::RefCell;
 use std::ops::Range;
+use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
@@ -14,7 +16,7 @@ use glam::{DVec3, Vec2};
 use rayon::prelude::*;
 
 use crate::image::{Film, Filter, PixelStats};
-use crate::integrator::Estimator;
+use crate::integrator::{Estimator, EstimatorKind, MisHeuristic, OptimalPixel};
 use crate::math::Spectrum;
 use crate::sampling::{Sampler, Uniform};
 use crate::scene::Scene;
@@ -98,6 +100,17 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
     let total = (last - first) as u64 * (w * h) as u64;
     let mut done = first;
     let mut stopped = false;
+    // Optimal MIS keeps per pixel the α of earlier rounds and the moments of all samples
+    // (each pixel's samples run on one thread at a time: the locks are uncontended).
+    let optimal: Vec<Mutex<OptimalPixel>> = if settings.estimator == EstimatorKind::Mis
+        && settings.mis.heuristic == MisHeuristic::Optimal
+    {
+        (0..w as usize * h as usize)
+            .map(|_| Mutex::new(OptimalPixel::default()))
+            .collect()
+    } else {
+        Vec::new()
+    };
     for window in rounds.windows(2) {
         let (s0, s1) = (window[0], window[1]);
         let sample = |x: u32, y: u32, s: u32| -> (Vec2, Spectrum) {
@@ -109,7 +122,17 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
                 settings.spp,
             );
             let p = Vec2::new(x as f32, y as f32) + sampler.next_2d();
-            let l = estimator.radiance(scene, &camera.ray(p), &mut sampler);
+            let ray = camera.ray(p);
+            let l = match optimal.get((y * w + x) as usize) {
+                Some(cell) => {
+                    let mut guard = cell.lock().unwrap_or_else(|e| e.into_inner());
+                    let state = RefCell::new(*guard);
+                    let l = estimator.radiance_in(scene, &ray, &mut sampler, Some(&state));
+                    *guard = state.into_inner();
+                    l
+                }
+                None => estimator.radiance(scene, &ray, &mut sampler),
+            };
             if l.is_finite() {
                 (p, l)
             } else {
@@ -121,6 +144,9 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
             round_pixel_box(&mut film, &tiles, s0..s1, &sample);
         } else {
             round_splatted(&mut film, &tiles, s0..s1, settings.filter, &sample);
+        }
+        for cell in &optimal {
+            cell.lock().unwrap_or_else(|e| e.into_inner()).next_round();
         }
         done = s1;
         (control.progress)((s1 - first) as u64 * (w * h) as u64, total);

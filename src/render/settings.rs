@@ -6,7 +6,7 @@ use crate::light::{check_sampling, sampling_summary};
 use crate::scene::{Camera, Scene};
 use crate::settings::{
     DEFAULT_RIS_CANDIDATES, EstimatorKind, LightSampling, LightSelect, LightStrategy, MAX_PIXELS,
-    MisSettings, Pass, RenderPatch, SamplerKind, SettingsError, Switch,
+    MisHeuristic, MisSettings, Pass, RenderPatch, SamplerKind, SettingsError, Switch,
 };
 
 /// A complete description of how to render a scene.
@@ -84,6 +84,16 @@ impl RenderSettings {
                 "--envmap-compensation is unbiased only with --estimator mis, not {}",
                 s.estimator
             )));
+        }
+        if s.estimator == EstimatorKind::Mis
+            && s.mis.heuristic == MisHeuristic::Optimal
+            && s.light_select == LightSelect::Ris
+        {
+            return Err(SettingsError::Conflict(
+                "--mis optimal does not combine with --light-select ris (a resampled light \
+                 sample has no density for the control variate)"
+                    .into(),
+            ));
         }
         if s.samples_lights() {
             check_sampling(&scene.lights, s.light_sampling)

@@ -68,6 +68,9 @@ named_enum! {
         /// One-sample model: pick light or BSDF sampling at random, weight by the balance
         /// heuristic.
         OneSample => "one-sample",
+        /// Multi-sample model, optimal weights (Kondapaneni et al. 2019): the balance
+        /// heuristic plus a per-pixel control variate from earlier rounds' samples.
+        Optimal => "optimal",
     }
 }
 

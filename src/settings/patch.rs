@@ -119,7 +119,7 @@ macro_rules! render_patch {
 render_patch! {
     /// Direct-lighting estimator: hemisphere, hemisphere-rejection, cosine, bsdf, light, mis.
     estimator: EstimatorKind = flag::ESTIMATOR,
-    /// MIS weighting: balance, power (β = 2), one-sample (balance, one strategy per sample).
+    /// MIS weighting: balance, power (β = 2), one-sample (balance, one strategy per sample), optimal (Kondapaneni et al. 2019: balance plus a per-pixel control variate).
     mis: MisHeuristic = flag::MIS,
     /// Light samples per estimate of the `mis` estimator (1 to 1024).
     light_samples: u32 = flag::LIGHT_SAMPLES,

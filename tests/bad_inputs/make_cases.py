@@ -335,6 +335,7 @@ HAND = [
     ("bench-triangles-negative", "bench --triangles -5", 2, "-", "unexpected argument"),
     ("render-spp-zero", f"render {OK} --spp 0 -o $OUT/o.png", 2, "--spp", "at least 1"),
     ("render-light-samples-zero", f"render {OK} --light-samples 0 -o $OUT/o.png", 2, "--light-samples", "1..=1024"),
+    ("render-mis-optimal-ris", f"render {OK} --mis optimal --light-select ris -o $OUT/o.png", 2, "--mis", "does not combine with --light-select ris"),
     ("render-pass-reversed", f"render {OK} --pass 3/2 -o $OUT/o.png", 2, "--pass", "1 ≤ I ≤ N"),
     ("render-pass-zero", f"render {OK} --pass 0/2 -o $OUT/o.png", 2, "--pass", "1 ≤ I ≤ N"),
     ("render-pass-word", f"render {OK} --pass half -o $OUT/o.png", 2, "--pass", "bad pass"),

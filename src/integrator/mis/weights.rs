@@ -20,7 +20,8 @@ pub fn mis_weight(heuristic: MisHeuristic, na_pa: f32, nb_pb: f32) -> f32 {
     let r = nb_pb / na_pa;
     match heuristic {
         MisHeuristic::Power => 1.0 / (1.0 + r * r),
-        MisHeuristic::Balance | MisHeuristic::OneSample => 1.0 / (1.0 + r),
+        // Optimal weights are the balance heuristic plus a control variate (`optimal`).
+        MisHeuristic::Balance | MisHeuristic::OneSample | MisHeuristic::Optimal => 1.0 / (1.0 + r),
     }
 }
 

@@ -196,6 +196,23 @@ pub const FIGURES: &[Figure] = &[
         }]),
     },
     Figure {
+        name: "optimal-mis",
+        description: "Veach's plates: MIS with the balance, power and optimal weights (Kondapaneni et al. 2019: the balance heuristic plus a per-pixel control variate fitted on the earlier rounds' samples), at equal spp",
+        kind: FigureKind::Panels(&[Panel {
+            title: "optimal-mis",
+            scene: "builtin:veach-mis",
+            strategies: &[
+                ("balance", "--estimator mis --mis balance"),
+                ("power", "--estimator mis --mis power"),
+                ("optimal", "--estimator mis --mis optimal"),
+            ],
+            spp: 64,
+            reference: "--estimator mis",
+            reference_spp: 1024,
+            insets: &[],
+        }]),
+    },
+    Figure {
         name: "envmap",
         description: "environment lighting: cosine vs BRDF vs environment-map sampling vs MIS",
         kind: FigureKind::Panels(&[Panel {
