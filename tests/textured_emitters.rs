@@ -129,7 +129,7 @@ fn emission_sampling_passes_chi_square() {
         .filter_map(|(name, shape, tex)| {
             let per_texel = |n: u32| n as usize * (20usize).div_ceil(n as usize);
             let resolution = [per_texel(tex.width), per_texel(tex.height)];
-            let t = EmissionTexture::new(tex, &shape).expect("texturable");
+            let t = EmissionTexture::new(std::sync::Arc::new(tex), &shape).expect("texturable");
             let mut sample = |rng: &mut Rng32| match t.sample(&shape, rng.next_2d()) {
                 Some((y, _, pdf)) => {
                     let uv = lightlab::light::texture_uv_at(&shape, y);
@@ -160,7 +160,7 @@ fn emission_sampling_passes_chi_square() {
 #[test]
 fn a_sample_reports_the_density_at_its_point() {
     for (name, shape, tex) in cases() {
-        let t = EmissionTexture::new(tex, &shape).expect("texturable");
+        let t = EmissionTexture::new(std::sync::Arc::new(tex), &shape).expect("texturable");
         let mut rng = Rng32::new(7);
         let mut mismatches = 0;
         for _ in 0..20_000 {
@@ -181,7 +181,7 @@ fn a_sample_reports_the_density_at_its_point() {
 
 /// A textured light of `shape`, sampled with `strategy`.
 fn light(shape: Shape, tex: Texture) -> Light {
-    let texture = EmissionTexture::new(tex, &shape).expect("texturable");
+    let texture = EmissionTexture::new(std::sync::Arc::new(tex), &shape).expect("texturable");
     Light::Area(AreaLight {
         shape,
         radiance: Spectrum::splat(1.0),

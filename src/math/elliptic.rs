@@ -1,119 +1,8 @@
-//! Carlson's symmetric elliptic integrals R_F and R_J in f64, by the duplication theorem
-//! (B. C. Carlson, "Numerical computation of real or complex elliptic integrals",
-//! Numerical Algorithms 10, 1995, §2), and the complete integrals K and Π built from them
-//! (DLMF 19.25.1); and Bulirsch's general complete integral `cel`, which gives K + cΠ in
-//! one quadratically converging iteration. For the solid angle of a disk.
-
-/// (3ε)^{-1/6}: the duplication stops once 4^{-m}·Q < |A_m|, with Q this factor times the
-/// largest |A₀ − x|, which leaves a truncation error of order ε in the series that
-/// follows (Carlson 1995, (2.2)).
-fn stop_factor() -> f64 {
-    (3.0 * f64::EPSILON).powf(-1.0 / 6.0)
-}
-
-/// R_F(x, y, z) = ½ ∫₀^∞ dt / √((t + x)(t + y)(t + z)), for x, y, z ≥ 0 with at most one
-/// of them zero.
-pub fn carlson_rf(x: f64, y: f64, z: f64) -> f64 {
-    let (x0, y0) = (x, y);
-    let (mut x, mut y, mut z) = (x, y, z);
-    let a0 = (x + y + z) / 3.0;
-    let q = stop_factor() * (a0 - x).abs().max((a0 - y).abs()).max((a0 - z).abs());
-    let mut a = a0;
-    let mut scale = 1.0; // 4^{-m}
-    for _ in 0..64 {
-        if q * scale < a.abs() {
-            break;
-        }
-        let (sx, sy, sz) = (x.sqrt(), y.sqrt(), z.sqrt());
-        let l = sx * sy + sy * sz + sz * sx;
-        x = (x + l) * 0.25;
-        y = (y + l) * 0.25;
-        z = (z + l) * 0.25;
-        a = (a + l) * 0.25;
-        scale *= 0.25;
-    }
-    let xx = (a0 - x0) * scale / a;
-    let yy = (a0 - y0) * scale / a;
-    let zz = -xx - yy;
-    let e2 = xx * yy - zz * zz;
-    let e3 = xx * yy * zz;
-    (1.0 - e2 / 10.0 + e3 / 14.0 + e2 * e2 / 24.0 - 3.0 * e2 * e3 / 44.0) / a.sqrt()
-}
-
-/// R_J(x, y, z, p) = (3/2) ∫₀^∞ dt / ((t + p)√((t + x)(t + y)(t + z))), for x, y, z ≥ 0
-/// (at most one zero) and p > 0.
-pub fn carlson_rj(x: f64, y: f64, z: f64, p: f64) -> f64 {
-    let (x0, y0, z0) = (x, y, z);
-    let (mut x, mut y, mut z, mut p) = (x, y, z, p);
-    let a0 = (x + y + z + 2.0 * p) / 5.0;
-    let delta = (p - x) * (p - y) * (p - z);
-    let q = stop_factor()
-        * (a0 - x)
-            .abs()
-            .max((a0 - y).abs())
-            .max((a0 - z).abs())
-            .max((a0 - p).abs());
-    let mut a = a0;
-    let mut scale = 1.0; // 4^{-m}
-    let mut sum = 0.0;
-    for _ in 0..64 {
-        if q * scale < a.abs() {
-            break;
-        }
-        let (sx, sy, sz, sp) = (x.sqrt(), y.sqrt(), z.sqrt(), p.sqrt());
-        let l = sx * sy + sy * sz + sz * sx;
-        let d = (sp + sx) * (sp + sy) * (sp + sz);
-        let e = delta * scale * scale * scale / (d * d);
-        sum += scale / d * rc_one(e);
-        x = (x + l) * 0.25;
-        y = (y + l) * 0.25;
-        z = (z + l) * 0.25;
-        p = (p + l) * 0.25;
-        a = (a + l) * 0.25;
-        scale *= 0.25;
-    }
-    let xx = (a0 - x0) * scale / a;
-    let yy = (a0 - y0) * scale / a;
-    let zz = (a0 - z0) * scale / a;
-    let pp = (-xx - yy - zz) / 2.0;
-    let e2 = xx * yy + xx * zz + yy * zz - 3.0 * pp * pp;
-    let e3 = xx * yy * zz + 2.0 * e2 * pp + 4.0 * pp * pp * pp;
-    let e4 = (2.0 * xx * yy * zz + e2 * pp + 3.0 * pp * pp * pp) * pp;
-    let e5 = xx * yy * zz * pp * pp;
-    let series = 1.0 - 3.0 * e2 / 14.0 + e3 / 6.0 + 9.0 * e2 * e2 / 88.0
-        - 3.0 * e4 / 22.0
-        - 9.0 * e2 * e3 / 52.0
-        + 3.0 * e5 / 26.0;
-    scale * series / (a * a.sqrt()) + 6.0 * sum
-}
-
-/// R_C(1, 1 + e) = R_F(1, 1 + e, 1 + e) in closed form (DLMF 19.2.18–19.2.19):
-/// atan(√e)/√e for e > 0, atanh(√−e)/√−e for −1 < e < 0, by its series near 0.
-fn rc_one(e: f64) -> f64 {
-    if e.abs() < 1e-4 {
-        // 1 − e/3 + e²/5 − e³/7: the next term is below 10⁻¹⁶.
-        1.0 - e * (1.0 / 3.0 - e * (1.0 / 5.0 - e / 7.0))
-    } else if e > 0.0 {
-        let s = e.sqrt();
-        s.atan() / s
-    } else {
-        let s = (-e).sqrt();
-        s.atanh() / s
-    }
-}
-
-/// The complete elliptic integral of the first kind K(m) = R_F(0, 1 − m, 1), parameter
-/// m = k² < 1.
-pub fn elliptic_k(m: f64) -> f64 {
-    carlson_rf(0.0, 1.0 - m, 1.0)
-}
-
-/// The complete elliptic integral of the third kind
-/// Π(n, m) = ∫₀^{π/2} dθ / ((1 − n sin²θ)√(1 − m sin²θ)) = K(m) + (n/3)·R_J(0, 1 − m, 1, 1 − n),
-/// for m < 1 and n < 1.
-pub fn elliptic_pi(n: f64, m: f64) -> f64 {
-    elliptic_k(m) + n / 3.0 * carlson_rj(0.0, 1.0 - m, 1.0, 1.0 - n)
-}
+//! Bulirsch's general complete elliptic integral `cel`, which gives K + cΠ (complete
+//! integrals of the first and third kind) in one quadratically converging iteration: for
+//! the solid angle of a disk. The tests check it against Carlson's symmetric forms R_F and
+//! R_J (B. C. Carlson, "Numerical computation of real or complex elliptic integrals",
+//! Numerical Algorithms 10, 1995, §2; DLMF 19.25.1), themselves checked against SciPy.
 
 /// Bulirsch's general complete elliptic integral (R. Bulirsch, "Numerical calculation of
 /// elliptic integrals and elliptic functions III", Numer. Math. 13, 1969):
@@ -152,6 +41,117 @@ pub fn cel(kc: f64, p: f64, a: f64, b: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// (3ε)^{-1/6}: the duplication stops once 4^{-m}·Q < |A_m|, with Q this factor times the
+    /// largest |A₀ − x|, which leaves a truncation error of order ε in the series that
+    /// follows (Carlson 1995, (2.2)).
+    fn stop_factor() -> f64 {
+        (3.0 * f64::EPSILON).powf(-1.0 / 6.0)
+    }
+
+    /// R_F(x, y, z) = ½ ∫₀^∞ dt / √((t + x)(t + y)(t + z)), for x, y, z ≥ 0 with at most one
+    /// of them zero.
+    fn carlson_rf(x: f64, y: f64, z: f64) -> f64 {
+        let (x0, y0) = (x, y);
+        let (mut x, mut y, mut z) = (x, y, z);
+        let a0 = (x + y + z) / 3.0;
+        let q = stop_factor() * (a0 - x).abs().max((a0 - y).abs()).max((a0 - z).abs());
+        let mut a = a0;
+        let mut scale = 1.0; // 4^{-m}
+        for _ in 0..64 {
+            if q * scale < a.abs() {
+                break;
+            }
+            let (sx, sy, sz) = (x.sqrt(), y.sqrt(), z.sqrt());
+            let l = sx * sy + sy * sz + sz * sx;
+            x = (x + l) * 0.25;
+            y = (y + l) * 0.25;
+            z = (z + l) * 0.25;
+            a = (a + l) * 0.25;
+            scale *= 0.25;
+        }
+        let xx = (a0 - x0) * scale / a;
+        let yy = (a0 - y0) * scale / a;
+        let zz = -xx - yy;
+        let e2 = xx * yy - zz * zz;
+        let e3 = xx * yy * zz;
+        (1.0 - e2 / 10.0 + e3 / 14.0 + e2 * e2 / 24.0 - 3.0 * e2 * e3 / 44.0) / a.sqrt()
+    }
+
+    /// R_J(x, y, z, p) = (3/2) ∫₀^∞ dt / ((t + p)√((t + x)(t + y)(t + z))), for x, y, z ≥ 0
+    /// (at most one zero) and p > 0.
+    fn carlson_rj(x: f64, y: f64, z: f64, p: f64) -> f64 {
+        let (x0, y0, z0) = (x, y, z);
+        let (mut x, mut y, mut z, mut p) = (x, y, z, p);
+        let a0 = (x + y + z + 2.0 * p) / 5.0;
+        let delta = (p - x) * (p - y) * (p - z);
+        let q = stop_factor()
+            * (a0 - x)
+                .abs()
+                .max((a0 - y).abs())
+                .max((a0 - z).abs())
+                .max((a0 - p).abs());
+        let mut a = a0;
+        let mut scale = 1.0; // 4^{-m}
+        let mut sum = 0.0;
+        for _ in 0..64 {
+            if q * scale < a.abs() {
+                break;
+            }
+            let (sx, sy, sz, sp) = (x.sqrt(), y.sqrt(), z.sqrt(), p.sqrt());
+            let l = sx * sy + sy * sz + sz * sx;
+            let d = (sp + sx) * (sp + sy) * (sp + sz);
+            let e = delta * scale * scale * scale / (d * d);
+            sum += scale / d * rc_one(e);
+            x = (x + l) * 0.25;
+            y = (y + l) * 0.25;
+            z = (z + l) * 0.25;
+            p = (p + l) * 0.25;
+            a = (a + l) * 0.25;
+            scale *= 0.25;
+        }
+        let xx = (a0 - x0) * scale / a;
+        let yy = (a0 - y0) * scale / a;
+        let zz = (a0 - z0) * scale / a;
+        let pp = (-xx - yy - zz) / 2.0;
+        let e2 = xx * yy + xx * zz + yy * zz - 3.0 * pp * pp;
+        let e3 = xx * yy * zz + 2.0 * e2 * pp + 4.0 * pp * pp * pp;
+        let e4 = (2.0 * xx * yy * zz + e2 * pp + 3.0 * pp * pp * pp) * pp;
+        let e5 = xx * yy * zz * pp * pp;
+        let series = 1.0 - 3.0 * e2 / 14.0 + e3 / 6.0 + 9.0 * e2 * e2 / 88.0
+            - 3.0 * e4 / 22.0
+            - 9.0 * e2 * e3 / 52.0
+            + 3.0 * e5 / 26.0;
+        scale * series / (a * a.sqrt()) + 6.0 * sum
+    }
+
+    /// R_C(1, 1 + e) = R_F(1, 1 + e, 1 + e) in closed form (DLMF 19.2.18–19.2.19):
+    /// atan(√e)/√e for e > 0, atanh(√−e)/√−e for −1 < e < 0, by its series near 0.
+    fn rc_one(e: f64) -> f64 {
+        if e.abs() < 1e-4 {
+            // 1 − e/3 + e²/5 − e³/7: the next term is below 10⁻¹⁶.
+            1.0 - e * (1.0 / 3.0 - e * (1.0 / 5.0 - e / 7.0))
+        } else if e > 0.0 {
+            let s = e.sqrt();
+            s.atan() / s
+        } else {
+            let s = (-e).sqrt();
+            s.atanh() / s
+        }
+    }
+
+    /// The complete elliptic integral of the first kind K(m) = R_F(0, 1 − m, 1), parameter
+    /// m = k² < 1.
+    fn elliptic_k(m: f64) -> f64 {
+        carlson_rf(0.0, 1.0 - m, 1.0)
+    }
+
+    /// The complete elliptic integral of the third kind
+    /// Π(n, m) = ∫₀^{π/2} dθ / ((1 − n sin²θ)√(1 − m sin²θ)) = K(m) + (n/3)·R_J(0, 1 − m, 1, 1 − n),
+    /// for m < 1 and n < 1.
+    fn elliptic_pi(n: f64, m: f64) -> f64 {
+        elliptic_k(m) + n / 3.0 * carlson_rj(0.0, 1.0 - m, 1.0, 1.0 - n)
+    }
 
     #[test]
     fn cel_agrees_with_carlsons_forms() {

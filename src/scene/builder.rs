@@ -106,7 +106,7 @@ impl SceneBuilder {
         let light = match emission {
             Some(e) => {
                 let texture = match e.texture {
-                    Some(t) => match EmissionTexture::new((*t).clone(), &shape) {
+                    Some(t) => match EmissionTexture::new(t, &shape) {
                         Ok(t) => Some(Arc::new(t)),
                         Err(e) => {
                             self.errors.push(format!(

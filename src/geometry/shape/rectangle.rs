@@ -70,6 +70,17 @@ impl Rectangle {
         self.o + uv.x * self.ea + uv.y * self.eb
     }
 
+    /// The parameters (α, β) of the point `p` of the rectangle's plane (its texture
+    /// coordinates).
+    #[inline]
+    pub fn uv_at(&self, p: Vec3) -> Vec2 {
+        let q = p - self.o;
+        Vec2::new(
+            q.dot(self.ea) / self.ea.length_squared(),
+            q.dot(self.eb) / self.eb.length_squared(),
+        )
+    }
+
     /// Nearest intersection in (0, t_max); both sides count.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
@@ -81,12 +92,7 @@ impl Rectangle {
         if !(t > 0.0 && t < t_max) {
             return None;
         }
-        let q = ray.at(t) - self.o;
-        let alpha = q.dot(self.ea) / self.ea.length_squared();
-        let beta = q.dot(self.eb) / self.eb.length_squared();
-        ((0.0..=1.0).contains(&alpha) && (0.0..=1.0).contains(&beta)).then_some(ShapeHit {
-            t,
-            uv: Vec2::new(alpha, beta),
-        })
+        let uv = self.uv_at(ray.at(t));
+        ((0.0..=1.0).contains(&uv.x) && (0.0..=1.0).contains(&uv.y)).then_some(ShapeHit { t, uv })
     }
 }

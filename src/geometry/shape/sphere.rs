@@ -14,7 +14,7 @@ pub struct Sphere {
     /// Radius (> 0).
     pub radius: f32,
     /// The sphere's own axes (Mitsuba: the rotation in its `to_world`), in which its
-    /// texture coordinates are measured; orthonormal, possibly mirrored.
+    /// texture coordinates are measured; orthonormal.
     pub axes: Frame,
 }
 

@@ -7,7 +7,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::{LightPoint, LightSampling, hit_plane, uniform_area_pdf};
+use super::{LightPoint, LightSampling, uniform_area_pdf};
 use crate::geometry::shape::Disk;
 use crate::light::ShadingPoint;
 use crate::sampling::Rng32;
@@ -50,8 +50,7 @@ pub(super) fn sample(
             // Draws after a rejection come from a stream keyed by u, so the sample stays
             // a function of u.
             let mut more = Rng32::new(((u.x.to_bits() as u64) << 32) | u.y.to_bits() as u64);
-            let (w, pdf) = sd.sample(u, &mut more)?;
-            let y = hit_plane(at.p, w, d.center, d.normal)?;
+            let (_, y, pdf) = sd.sample(u, &mut more)?;
             Some(LightPoint {
                 y,
                 ny: d.normal,

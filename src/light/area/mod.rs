@@ -100,27 +100,12 @@ pub(crate) fn hit_plane(x: Vec3, w: Vec3, o: Vec3, n: Vec3) -> Option<Vec3> {
 }
 
 impl AreaLight {
-    /// A one-sided emitter of constant radiance `radiance` on `shape`.
-    pub fn new(shape: Shape, radiance: Spectrum) -> AreaLight {
-        AreaLight {
-            shape,
-            radiance,
-            two_sided: false,
-            texture: None,
-        }
-    }
-
     /// The strategy in use when `sampling` is asked for: resolved for this shape (on a
     /// textured emitter by [`LightSampling::resolve_textured`]; there `area` samples ∝
     /// emitted power).
     #[inline]
     pub fn strategy(&self, sampling: LightSampling) -> LightSampling {
-        let kind = EmitterKind::of(&self.shape);
-        if self.texture.is_some() {
-            sampling.resolve_textured(kind)
-        } else {
-            sampling.resolve(kind)
-        }
+        sampling.resolve_for(EmitterKind::of(&self.shape), self.texture.is_some())
     }
 
     /// Radiance leaving the point `y` (normal `ny`) in direction `w`.

@@ -121,6 +121,17 @@ impl LightSampling {
             s => s.resolve(kind),
         }
     }
+
+    /// [`LightSampling::resolve`] or, for an emitter with a radiance texture,
+    /// [`LightSampling::resolve_textured`].
+    #[inline]
+    pub fn resolve_for(self, kind: EmitterKind, textured: bool) -> LightSampling {
+        if textured {
+            self.resolve_textured(kind)
+        } else {
+            self.resolve(kind)
+        }
+    }
 }
 
 /// A strategy asked of a shape that does not implement it.
@@ -184,16 +195,13 @@ pub fn sampling_summary(lights: &[Light], sampling: Option<LightSampling>) -> St
             } else {
                 kind.name().to_owned()
             };
-            let strategy = |s: LightSampling| {
-                if with_texture {
-                    s.resolve_textured(kind)
-                } else {
-                    s.resolve(kind)
-                }
-            };
             match (n, sampling) {
                 (0, _) => {}
-                (_, Some(s)) => parts.push(format!("{} ({})", plural(n, &word), strategy(s))),
+                (_, Some(s)) => parts.push(format!(
+                    "{} ({})",
+                    plural(n, &word),
+                    s.resolve_for(kind, with_texture)
+                )),
                 (_, None) => parts.push(plural(n, &word)),
             }
         }

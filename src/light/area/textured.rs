@@ -20,6 +20,8 @@
 //! floor of [`FLOOR`] × the mean weight, so no point that emits has density zero (the
 //! estimate stays unbiased whatever the texture).
 
+use std::sync::Arc;
+
 use glam::{Vec2, Vec3};
 
 use crate::geometry::Shape;
@@ -27,6 +29,7 @@ use crate::math::spectrum::luminance;
 use crate::math::texture::Texture;
 use crate::math::{PI, Spectrum};
 use crate::sampling::distribution::PiecewiseConstant2D;
+use crate::sampling::warp::direction_from_z_phi;
 
 /// Largest number of grid cells along one side.
 const MAX_SIDE: usize = 4096;
@@ -38,8 +41,8 @@ pub const FLOOR: f32 = 0.02;
 /// A textured radiance and its sampling grid over one shape.
 #[derive(Clone, Debug)]
 pub struct EmissionTexture {
-    /// The radiance texture.
-    pub texture: Texture,
+    /// The radiance texture (shared by every shape the emitter covers).
+    pub texture: Arc<Texture>,
     /// Cells along u.
     nu: usize,
     /// Cells along v.
@@ -59,7 +62,7 @@ pub struct UntexturableShape(pub &'static str);
 impl EmissionTexture {
     /// The sampling grid of `texture` on `shape` (a rectangle, disk or sphere; triangles
     /// have no texture domain of their own).
-    pub fn new(texture: Texture, shape: &Shape) -> Result<EmissionTexture, UntexturableShape> {
+    pub fn new(texture: Arc<Texture>, shape: &Shape) -> Result<EmissionTexture, UntexturableShape> {
         if matches!(shape, Shape::Triangle(_)) {
             return Err(UntexturableShape("triangle"));
         }
@@ -171,13 +174,7 @@ impl EmissionTexture {
 #[inline]
 pub fn uv_at(shape: &Shape, y: Vec3) -> Vec2 {
     match shape {
-        Shape::Rectangle(r) => {
-            let q = y - r.o;
-            Vec2::new(
-                q.dot(r.ea) / r.ea.length_squared(),
-                q.dot(r.eb) / r.eb.length_squared(),
-            )
-        }
+        Shape::Rectangle(r) => r.uv_at(y),
         Shape::Disk(d) => d.uv_at(y),
         Shape::Sphere(s) => s.uv_at(y),
         // Refused by `EmissionTexture::new`.
@@ -227,12 +224,8 @@ fn place(shape: &Shape, nu: usize, nv: usize, i: usize, j: usize, t: Vec2) -> (V
                 (PI * (j + 1) as f32 / nv_f).cos(),
             );
             let cos_theta = (c0 + t.y * (c1 - c0)).clamp(-1.0, 1.0);
-            let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
             let phi = 2.0 * PI * (i as f32 + t.x) / nu_f;
-            let (sp, cp) = phi.sin_cos();
-            let n = s
-                .axes
-                .to_world(Vec3::new(sin_theta * cp, sin_theta * sp, cos_theta));
+            let n = s.axes.to_world(direction_from_z_phi(cos_theta, phi));
             (s.center + s.radius * n, n)
         }
         Shape::Triangle(tri) => (tri.p0, tri.normal()),

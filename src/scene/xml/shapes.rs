@@ -52,17 +52,12 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
         }
     }
     let textured = emission.as_ref().is_some_and(|e| e.texture.is_some());
+    // Located at the emitter, which a textured radiance implies.
     let refuse_texture = |what: &str| {
-        emitter_el.map_or_else(
-            || el.error("a textured radiance needs a shape with texture coordinates"),
-            |e| {
-                e.error(format!(
-                    "a textured radiance can emit from a rectangle, disk or sphere, not from \
-                     {what} (lightlab samples it by power over the shape's own texture \
-                     coordinates)"
-                ))
-            },
-        )
+        emitter_el.unwrap_or(el).error(format!(
+            "a textured radiance can emit from a rectangle, disk or sphere, not from {what} \
+             (lightlab samples it by power over the shape's own texture coordinates)"
+        ))
     };
     if textured && !matches!(ty, "rectangle" | "disk" | "sphere") {
         return Err(refuse_texture(&format!("a \"{ty}\" shape")));
@@ -114,8 +109,8 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
                     ),
                 ));
             }
-            // Texture coordinates are measured in the sphere's own axes: the rotation
-            // (or mirroring) part of to_world.
+            // Texture coordinates are measured in the sphere's own axes: the rotation part
+            // of to_world.
             let rotation = linear / scale;
             let sphere = Sphere {
                 axes: Frame {
