@@ -72,4 +72,6 @@ pub mod flag {
     pub const PASS: &str = "pass";
     /// `--horizon-rejection`.
     pub const HORIZON_REJECTION: &str = "horizon-rejection";
+    /// `--fast-paths`.
+    pub const FAST_PATHS: &str = "fast-paths";
 }

@@ -7,6 +7,7 @@ use lightlab::bsdf::{Diffuse, Material};
 use lightlab::geometry::Ray;
 use lightlab::image::Film;
 use lightlab::integrator::{Estimator, EstimatorKind, MisHeuristic, MisSettings};
+use lightlab::light::LightSampling;
 use lightlab::light::select::LightSelect;
 use lightlab::math::{PI, Spectrum};
 
@@ -113,5 +114,26 @@ fn images_are_bitwise_identical_for_any_thread_count() {
         let a = one.install(|| render_assignment(kind, 4, 3));
         let b = two.install(|| render_assignment(kind, 4, 3));
         assert_eq!(a, b, "{kind}");
+    }
+}
+
+#[test]
+fn fast_paths_agree_with_the_reference_implementations() {
+    // `--fast-paths off` samples the rectangle light with the readable f64 spherical
+    // rectangle; on (the default) with the fast one. Independent seeds: the blocks must
+    // agree within noise for the light and MIS estimators.
+    let scene = builtin::build("assignment").expect("scene");
+    for estimator in [EstimatorKind::Light, EstimatorKind::Mis] {
+        let film = |fast: bool, seed: u64| {
+            render_small(&scene, 2048, seed, |s| {
+                s.estimator = estimator;
+                s.light_sampling = LightSampling::SolidAngle;
+                s.fast_paths = fast;
+            })
+        };
+        let (fast, reference) = (blocks(&film(true, 21)), blocks(&film(false, 22)));
+        let worst = worst(&block_z(&fast, &reference));
+        println!("{estimator}: worst block z = {worst:+.2}");
+        assert!(worst.abs() < 4.0, "{estimator}: worst block z = {worst}");
     }
 }

@@ -90,7 +90,7 @@ impl Light {
         strategy: LightStrategy,
     ) -> Option<LightSample> {
         match self {
-            Light::Area(l) => l.sample_with(at, u, strategy.sampling, strategy.horizon_rejection),
+            Light::Area(l) => l.sample_with(at, u, strategy),
             Light::Point(l) => l.sample(at),
             Light::Environment(e) => {
                 let (w_in, radiance, pdf) = e.sample(u, strategy.env_compensation)?;
@@ -143,7 +143,7 @@ impl Light {
     #[inline]
     pub fn pdf(&self, at: &ShadingPoint, y: Vec3, ny: Vec3, strategy: LightStrategy) -> f32 {
         match self {
-            Light::Area(l) => l.pdf(at, y, ny, strategy.sampling),
+            Light::Area(l) => l.pdf_with(at, y, ny, strategy),
             Light::Point(_) => 0.0,
             Light::Environment(e) => e.pdf((y - at.p).normalize(), strategy.env_compensation),
             Light::Polygon(l) => l.pdf(at, y, ny, strategy.sampling),

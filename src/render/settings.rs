@@ -39,6 +39,8 @@ pub struct RenderSettings {
     pub envmap_compensation: bool,
     /// Horizon rejection of area-light samples before the shadow ray (default on).
     pub horizon_rejection: bool,
+    /// The f32 fast paths of light sampling (default on; off for the f64 reference).
+    pub fast_paths: bool,
 }
 
 impl RenderSettings {
@@ -78,6 +80,7 @@ impl RenderSettings {
             filter: scene.filter,
             envmap_compensation: p.envmap_compensation.unwrap_or(false),
             horizon_rejection: p.horizon_rejection != Some(Switch::Off),
+            fast_paths: p.fast_paths != Some(Switch::Off),
         };
         if s.envmap_compensation && s.estimator != EstimatorKind::Mis {
             return Err(SettingsError::Conflict(format!(
@@ -145,6 +148,7 @@ impl RenderSettings {
             sampling: self.light_sampling,
             env_compensation: self.envmap_compensation && self.estimator == EstimatorKind::Mis,
             horizon_rejection: self.horizon_rejection,
+            fast_paths: self.fast_paths,
         }
     }
 
@@ -167,6 +171,7 @@ impl RenderSettings {
             pass: (self.pass != Pass::WHOLE).then_some(self.pass),
             envmap_compensation: self.envmap_compensation.then_some(true),
             horizon_rejection: (!self.horizon_rejection).then_some(Switch::Off),
+            fast_paths: (!self.fast_paths).then_some(Switch::Off),
         }
     }
 }

@@ -171,6 +171,10 @@ pub struct LightStrategy {
     /// (lecture, "lights below the horizon"); off traces the shadow ray first, as the
     /// naive loop does, for the same image.
     pub horizon_rejection: bool,
+    /// Sample with the renderer's f32 fast paths where a shape has one (rectangles
+    /// under `solid-angle`); off, every light uses the readable f64 implementation the
+    /// fast paths are tested against.
+    pub fast_paths: bool,
 }
 
 impl Default for LightStrategy {
@@ -180,6 +184,7 @@ impl Default for LightStrategy {
             sampling: LightSampling::Best,
             env_compensation: false,
             horizon_rejection: true,
+            fast_paths: true,
         }
     }
 }
@@ -190,6 +195,7 @@ impl From<LightSampling> for LightStrategy {
             sampling,
             env_compensation: false,
             horizon_rejection: true,
+            fast_paths: true,
         }
     }
 }

@@ -145,6 +145,8 @@ render_patch! {
     pass: Pass = flag::PASS,
     /// Area lights: reject samples below the horizon before the shadow ray: on (default), off.
     horizon_rejection: Switch = flag::HORIZON_REJECTION,
+    /// The renderer's f32 fast paths for light sampling: on (default), off (the readable f64 implementations they are tested against).
+    fast_paths: Switch = flag::FAST_PATHS,
 }
 
 /// The known flags, for error messages.

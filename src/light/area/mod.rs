@@ -24,7 +24,7 @@ use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
 
-use super::{LightSample, ShadingPoint};
+use super::{LightSample, LightStrategy, ShadingPoint};
 use crate::geometry::Shape;
 use crate::math::{PI, Spectrum, spectrum::luminance};
 
@@ -142,20 +142,22 @@ impl AreaLight {
         u: Vec2,
         sampling: LightSampling,
     ) -> Option<LightSample> {
-        self.sample_with(at, u, sampling, true)
+        self.sample_with(at, u, LightStrategy::from(sampling))
     }
 
-    /// [`AreaLight::sample`], keeping samples below the horizon of `at` (for the
-    /// estimator to score zero after its shadow ray) unless `reject_below_horizon`.
+    /// [`AreaLight::sample`] with the whole render strategy: samples below the horizon
+    /// of `at` are kept (for the estimator to score zero after its shadow ray) unless
+    /// `horizon_rejection`, and `fast_paths` picks the f32 fast paths where a shape has
+    /// one.
     #[inline]
     pub fn sample_with(
         &self,
         at: &ShadingPoint,
         u: Vec2,
-        sampling: LightSampling,
-        reject_below_horizon: bool,
+        render: LightStrategy,
     ) -> Option<LightSample> {
-        let strategy = self.strategy(sampling);
+        let reject_below_horizon = render.horizon_rejection;
+        let strategy = self.strategy(render.sampling);
         let point = match (&self.shape, &self.texture) {
             (shape, Some(t)) if strategy == LightSampling::Area => {
                 let (y, ny, pdf_area) = t.sample(shape, u)?;
@@ -166,7 +168,7 @@ impl AreaLight {
                 }
             }
             (Shape::Sphere(s), _) => sphere::sample(s, strategy, at, u)?,
-            (Shape::Rectangle(r), _) => rectangle::sample(r, strategy, at, u)?,
+            (Shape::Rectangle(r), _) => rectangle::sample(r, strategy, render.fast_paths, at, u)?,
             (Shape::Triangle(t), _) => triangle::sample(t, strategy, at, u)?,
             (Shape::Disk(d), _) => disk::sample(d, strategy, at, u)?,
         };
@@ -180,13 +182,20 @@ impl AreaLight {
     /// this light with geometric normal `ny`) with strategy `sampling`.
     #[inline]
     pub fn pdf(&self, at: &ShadingPoint, y: Vec3, ny: Vec3, sampling: LightSampling) -> f32 {
-        let strategy = self.strategy(sampling);
+        self.pdf_with(at, y, ny, LightStrategy::from(sampling))
+    }
+
+    /// [`AreaLight::pdf`] under the whole render strategy (its `fast_paths` as in
+    /// [`AreaLight::sample_with`]).
+    #[inline]
+    pub fn pdf_with(&self, at: &ShadingPoint, y: Vec3, ny: Vec3, render: LightStrategy) -> f32 {
+        let strategy = self.strategy(render.sampling);
         if let (Some(t), LightSampling::Area) = (&self.texture, strategy) {
             return area_pdf_to_solid_angle(at.p, y, ny, t.pdf(&self.shape, y));
         }
         match &self.shape {
             Shape::Sphere(s) => sphere::pdf(s, strategy, at, y, ny),
-            Shape::Rectangle(r) => rectangle::pdf(r, strategy, at, y, ny),
+            Shape::Rectangle(r) => rectangle::pdf(r, strategy, render.fast_paths, at, y, ny),
             Shape::Triangle(t) => triangle::pdf(t, strategy, at, y, ny),
             Shape::Disk(d) => disk::pdf(d, strategy, at, y, ny),
         }

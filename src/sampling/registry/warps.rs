@@ -403,6 +403,25 @@ fn spherical_entries() -> Vec<Entry> {
             boxed(move |w| r.pdf(w)),
         );
         list.push(with_inverse(e, boxed(move |w| r.to_square(w))));
+        // The renderer's fast path of the same map (no inverse of its own).
+        let Some(f) = FastSphericalRectangle::new(from, v0, ex, ey) else {
+            continue;
+        };
+        list.push(entry(
+            &format!("spherical-rectangle-fast-{case}"),
+            &format!(
+                "the renderer's fast path of spherical-rectangle (no f64 acos), {case} view, {:.2e} sr",
+                f.solid_angle()
+            ),
+            cap_around(from, &corners),
+            // As for the f64 map: a far edge point's f32 direction may round to just
+            // outside, and its density is what `pdf` says of the direction returned.
+            square(move |u| {
+                let w = f.sample(u).0;
+                (w, f.pdf(w))
+            }),
+            boxed(move |w| f.pdf(w)),
+        ));
     }
     list
 }
