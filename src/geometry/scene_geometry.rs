@@ -6,7 +6,7 @@ use glam::Vec3;
 use super::bvh::Bvh;
 use super::hit::{NO_LIGHT, SurfaceHit};
 use super::mesh::Mesh;
-use super::shape::Shape;
+use super::shape::{Shape, ShapeHit};
 use super::{Aabb, Ray, offset_origin};
 use crate::math::Frame;
 
@@ -61,10 +61,15 @@ impl Geometry {
     /// The closest hit of `ray` in (0, t_max), with its shading data.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<SurfaceHit> {
-        let (prim, t) = self.bvh.closest_hit(ray, t_max, |i, r, t| {
-            self.prims[i as usize].shape.intersect(r, t).map(|h| h.t)
+        // Every hit the closure reports (t below the closest so far) becomes the closest,
+        // so the last one it reports is the winner: keep its surface parameters.
+        let mut last = None;
+        let (prim, _) = self.bvh.closest_hit(ray, t_max, |i, r, t| {
+            let hit = self.prims[i as usize].shape.intersect(r, t)?;
+            last = Some(hit);
+            Some(hit.t)
         })?;
-        self.surface_hit(prim, ray, t)
+        self.surface_hit(prim, ray, &last?)
     }
 
     /// True when something blocks `ray` in (0, t_max).
@@ -93,12 +98,10 @@ impl Geometry {
         self.occluded(&Ray::new(o, w), distance * (1.0 - 1e-4))
     }
 
-    fn surface_hit(&self, prim: u32, ray: &Ray, t: f32) -> Option<SurfaceHit> {
+    fn surface_hit(&self, prim: u32, ray: &Ray, hit: &ShapeHit) -> Option<SurfaceHit> {
         let p = &self.prims[prim as usize];
-        // Recompute the winner's hit to get its surface parameters.
-        let hit = p.shape.intersect(ray, t * (1.0 + 1e-5) + 1e-30)?;
         let point = ray.at(hit.t);
-        let geo = p.shape.geometry_at(point, &hit);
+        let geo = p.shape.geometry_at(point, hit);
         let (mut ns, mut uv) = (geo.ng, geo.uv);
         if let Shape::Triangle(tri) = &p.shape {
             let mesh = &self.meshes[tri.mesh as usize];

@@ -113,14 +113,8 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
     };
     for window in rounds.windows(2) {
         let (s0, s1) = (window[0], window[1]);
-        let sample = |x: u32, y: u32, s: u32| -> (Vec2, Spectrum) {
-            let mut sampler = Sampler::new(
-                settings.sampler,
-                settings.seed,
-                (y * w + x) as u64,
-                s,
-                settings.spp,
-            );
+        let sample = |x: u32, y: u32, pixel_key: u64, s: u32| -> (Vec2, Spectrum) {
+            let mut sampler = Sampler::for_pixel(settings.sampler, pixel_key, s, settings.spp);
             let p = Vec2::new(x as f32, y as f32) + sampler.next_2d();
             let ray = camera.ray(p);
             let l = match optimal.get((y * w + x) as usize) {
@@ -141,9 +135,16 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
             }
         };
         if settings.filter.is_pixel_box() {
-            round_pixel_box(&mut film, &tiles, s0..s1, &sample);
+            round_pixel_box(&mut film, &tiles, s0..s1, settings.seed, &sample);
         } else {
-            round_splatted(&mut film, &tiles, s0..s1, settings.filter, &sample);
+            round_splatted(
+                &mut film,
+                &tiles,
+                s0..s1,
+                settings.seed,
+                settings.filter,
+                &sample,
+            );
         }
         for cell in &optimal {
             cell.lock().unwrap_or_else(|e| e.into_inner()).next_round();
@@ -175,11 +176,12 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
 
 /// One round with the one-pixel box filter: each pixel continues its own Welford
 /// statistics with its samples `samples`.
-fn round_pixel_box(
+fn round_pixel_box<F: Fn(u32, u32, u64, u32) -> (Vec2, Spectrum) + Sync>(
     film: &mut Film,
     tiles: &[Tile],
     samples: Range<u32>,
-    sample: &(dyn Fn(u32, u32, u32) -> (Vec2, Spectrum) + Sync),
+    seed: u64,
+    sample: &F,
 ) {
     let w = film.width;
     let results: Vec<Vec<PixelStats>> = tiles
@@ -189,8 +191,9 @@ fn round_pixel_box(
             for y in y0..y1 {
                 for x in x0..x1 {
                     let mut stats = *film.pixel(x, y);
+                    let key = Sampler::pixel_key(seed, (y * w + x) as u64);
                     for s in samples.clone() {
-                        stats.add(sample(x, y, s).1);
+                        stats.add(sample(x, y, key, s).1);
                     }
                     out.push(stats);
                 }
@@ -209,12 +212,13 @@ fn round_pixel_box(
 /// One round with a wider filter: each tile splats its samples into a buffer that
 /// covers the tile and the filter's reach, and the buffers are merged into the film in
 /// tile order (Chan's merge), so the image does not depend on the thread count.
-fn round_splatted(
+fn round_splatted<F: Fn(u32, u32, u64, u32) -> (Vec2, Spectrum) + Sync>(
     film: &mut Film,
     tiles: &[Tile],
     samples: Range<u32>,
+    seed: u64,
     filter: Filter,
-    sample: &(dyn Fn(u32, u32, u32) -> (Vec2, Spectrum) + Sync),
+    sample: &F,
 ) {
     let (w, h) = (film.width, film.height);
     let reach = filter.radius().ceil() as u32;
@@ -228,8 +232,9 @@ fn round_splatted(
             let mut buf = vec![Splats::default(); (bw * (by1 - by0)) as usize];
             for y in y0..y1 {
                 for x in x0..x1 {
+                    let key = Sampler::pixel_key(seed, (y * w + x) as u64);
                     for s in samples.clone() {
-                        let (p, l) = sample(x, y, s);
+                        let (p, l) = sample(x, y, key, s);
                         let (xl, xh) = filter.footprint(p.x, w);
                         let (yl, yh) = filter.footprint(p.y, h);
                         // Separable weights, evaluated once per axis.

@@ -47,13 +47,27 @@ pub struct Sampler {
     spp: u32,
     dimension: u32,
     rng: Rng32,
+    /// The 2D stratification of `spp` cells (stratified sampler only).
+    rows: EqualAreaRows,
 }
 
 impl Sampler {
     /// The stream for sample `sample_index` (of `spp` in all) of pixel `pixel`
     /// (a linear index) under `seed`.
     pub fn new(kind: SamplerKind, seed: u64, pixel: u64, sample_index: u32, spp: u32) -> Sampler {
-        let pixel_key = hash_words(&[seed, pixel]);
+        Self::for_pixel(kind, Self::pixel_key(seed, pixel), sample_index, spp)
+    }
+
+    /// The key every sample of pixel `pixel` under `seed` shares (hash once per pixel,
+    /// not per sample).
+    #[inline]
+    pub fn pixel_key(seed: u64, pixel: u64) -> u64 {
+        hash_words(&[seed, pixel])
+    }
+
+    /// [`Sampler::new`] for the pixel whose [`Sampler::pixel_key`] is `pixel_key`.
+    #[inline]
+    pub fn for_pixel(kind: SamplerKind, pixel_key: u64, sample_index: u32, spp: u32) -> Sampler {
         let kind = match kind {
             SamplerKind::Sobol if sample_index >= SOBOL_MAX_SAMPLES => SamplerKind::Independent,
             SamplerKind::Stratified if sample_index >= spp => SamplerKind::Independent,
@@ -64,6 +78,11 @@ impl Sampler {
             pixel_key,
             sample_index,
             spp: spp.max(1),
+            rows: if kind == SamplerKind::Stratified {
+                EqualAreaRows::new(spp.max(1))
+            } else {
+                EqualAreaRows::UNUSED
+            },
             dimension: 0,
             // Sobol points draw nothing from the PCG stream: skip its three hashes
             // (a quarter of the set-up cost of a sample).
@@ -120,7 +139,7 @@ impl Uniform for Sampler {
             SamplerKind::Stratified => {
                 let (cell, _) = self.stratified_cell();
                 let jitter = Vec2::new(self.rng.next_f32(), self.rng.next_f32());
-                equal_area_cell(cell, self.spp, jitter)
+                self.rows.cell(cell, jitter)
             }
             SamplerKind::Sobol => {
                 // Dimensions 0 and 1 of Sobol form a (0,2)-sequence: every 2D request
@@ -140,10 +159,48 @@ pub const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
 /// proportional to their cell counts so that every cell has area 1/n. For square `n`
 /// this is the usual jittered grid.
 pub fn equal_area_cell(cell: u32, n: u32, jitter: Vec2) -> Vec2 {
-    let rows = (n as f32).sqrt() as u32;
-    let rows = rows.clamp(1, n);
-    let base = n / rows;
-    let extra = n % rows;
+    EqualAreaRows::new(n).cell(cell, jitter)
+}
+
+/// The row layout of [`equal_area_cell`] for `n` cells, computed once per sample rather
+/// than once per dimension (a square root and two integer divisions).
+#[derive(Clone, Copy, Debug)]
+struct EqualAreaRows {
+    n: u32,
+    base: u32,
+    extra: u32,
+}
+
+impl EqualAreaRows {
+    /// A placeholder for samplers that do not stratify.
+    const UNUSED: EqualAreaRows = EqualAreaRows {
+        n: 1,
+        base: 1,
+        extra: 0,
+    };
+
+    fn new(n: u32) -> EqualAreaRows {
+        let rows = (n as f32).sqrt() as u32;
+        let rows = rows.clamp(1, n);
+        EqualAreaRows {
+            n,
+            base: n / rows,
+            extra: n % rows,
+        }
+    }
+
+    /// [`equal_area_cell`] of `cell` in this layout.
+    #[inline]
+    fn cell(&self, cell: u32, jitter: Vec2) -> Vec2 {
+        let EqualAreaRows { n, base, extra } = *self;
+        equal_area_cell_in(cell, n, base, extra, jitter)
+    }
+}
+
+/// [`equal_area_cell`] with the layout given: `base` cells per row, the first `extra`
+/// rows one more.
+#[inline]
+fn equal_area_cell_in(cell: u32, n: u32, base: u32, extra: u32, jitter: Vec2) -> Vec2 {
     // Rows 0..extra hold base + 1 cells, the rest hold base.
     let (row, col, before) = if cell < extra * (base + 1) {
         let r = cell / (base + 1);

@@ -13,12 +13,14 @@ mod bvh;
 pub mod cone;
 mod estimate;
 mod power;
+mod prepared;
 mod uniform;
 
 pub use adaptive::{ADAPTIVE_FLOOR, AdaptiveSelector};
 pub use bounds::LightBounds;
 pub use bvh::BvhSelector;
 pub use power::PowerSelector;
+pub use prepared::PreparedBounds;
 pub use uniform::UniformSelector;
 
 use super::{Light, ShadingPoint};

@@ -10,7 +10,7 @@ mod build;
 
 use build::{BuildLight, Builder};
 
-use super::{LightSelector, Selection};
+use super::{LightSelector, PreparedBounds, Selection};
 use crate::light::{Light, LightBounds, ShadingPoint};
 use crate::sampling::sampler::ONE_MINUS_EPSILON;
 
@@ -38,6 +38,8 @@ const NOT_IN_TREE: u8 = u8::MAX;
 #[derive(Clone, Debug)]
 pub struct BvhSelector {
     nodes: Vec<Node>,
+    /// The nodes' bounds prepared for `importance` (same order).
+    prepared: Vec<PreparedBounds>,
     trails: Vec<Trail>,
     /// Lights at infinity (environments), outside the tree: chosen with probability
     /// n_inf / (n_inf + 1) — the tree counts as one more choice — as pbrt-v4 does.
@@ -75,6 +77,11 @@ impl BvhSelector {
             builder.build(&mut items, 0, 0);
         }
         BvhSelector {
+            prepared: builder
+                .nodes
+                .iter()
+                .map(|n| PreparedBounds::new(&n.bounds))
+                .collect(),
             nodes: builder.nodes,
             trails: builder.trails,
             infinite: lights
@@ -106,7 +113,7 @@ impl BvhSelector {
     /// (relMSE 0.01278 vs 0.01285 at 49 spp), so every node uses its bounds.
     #[inline]
     fn importance(&self, i: usize, at: &ShadingPoint) -> f32 {
-        self.nodes[i].bounds.importance(at)
+        self.prepared[i].importance(at)
     }
 
     /// The two children of interior node `i` and their importances at `at`; both
@@ -145,7 +152,7 @@ impl BvhSelector {
         let root = self.nodes.first()?;
         if root.leaf {
             // One light: take it if it can contribute at all.
-            return (root.bounds.importance(at) > 0.0).then_some(Selection {
+            return (self.prepared[0].importance(at) > 0.0).then_some(Selection {
                 index: root.second_or_light as usize,
                 pmf: 1.0,
                 u_reused: u.clamp(0.0, ONE_MINUS_EPSILON),
@@ -183,7 +190,7 @@ impl BvhSelector {
             return 0.0;
         };
         if self.nodes[0].leaf {
-            return if self.nodes[0].bounds.importance(at) > 0.0 {
+            return if self.prepared[0].importance(at) > 0.0 {
                 1.0
             } else {
                 0.0

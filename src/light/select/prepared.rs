@@ -1,0 +1,162 @@
+//! [`LightBounds`] prepared for the light BVH's inner loop: what
+//! [`LightBounds::importance`] derives from the bounds alone (box centre, half extent,
+//! squared bounding radius, the distance floor, sin θ_o) computed once per node instead
+//! of once per visit. Selection visits two nodes per tree level, for the light sample and
+//! again for the pmf of a BSDF sample that reaches a light; on a mesh of 256 emitting
+//! triangles `importance` was a third of the render (perf, 1 thread).
+//!
+//! The arithmetic is the readable version's, operation for operation, so the importance
+//! is the same float (tested bit for bit below).
+
+use glam::Vec3;
+
+use super::LightBounds;
+use super::cone::{cos_sub_clamped, sin_sub_clamped};
+use crate::light::ShadingPoint;
+use crate::math::safe_sqrt;
+
+/// Light bounds with their per-node constants (see the module doc).
+#[derive(Clone, Copy, Debug)]
+pub struct PreparedBounds {
+    /// Box centre.
+    centre: Vec3,
+    /// Half the box's extent.
+    half: Vec3,
+    /// Squared radius of the box's bounding sphere.
+    radius2: f32,
+    /// Lower bound of the squared distance (a tenth of half the diagonal, squared).
+    d2_floor: f32,
+    phi: f32,
+    w: Vec3,
+    cos_theta_o: f32,
+    sin_theta_o: f32,
+    cos_theta_e: f32,
+    two_sided: bool,
+}
+
+impl PreparedBounds {
+    /// The prepared form of `b`.
+    pub fn new(b: &LightBounds) -> PreparedBounds {
+        let half_diagonal = 0.5 * b.aabb.extent().length();
+        PreparedBounds {
+            centre: b.aabb.centroid(),
+            half: 0.5 * b.aabb.extent(),
+            radius2: (0.5 * b.aabb.extent()).length_squared(),
+            d2_floor: 0.01 * half_diagonal * half_diagonal,
+            phi: b.phi,
+            w: b.w,
+            cos_theta_o: b.cos_theta_o,
+            sin_theta_o: safe_sqrt(1.0 - b.cos_theta_o * b.cos_theta_o),
+            cos_theta_e: b.cos_theta_e,
+            two_sided: b.two_sided,
+        }
+    }
+
+    /// [`LightBounds::importance`] of the bounds this was made from, the same float.
+    #[inline]
+    pub fn importance(&self, at: &ShadingPoint) -> f32 {
+        if self.phi <= 0.0 {
+            return 0.0;
+        }
+        let v = at.p - self.centre;
+        let dist2 = v.length_squared();
+        let d2 = dist2.max(self.d2_floor);
+        if d2 <= 0.0 {
+            return 0.0;
+        }
+        // wi: from the cluster towards the shading point (glam's normalize_or_zero).
+        let rcp = dist2.sqrt().recip();
+        let wi = if rcp.is_finite() && rcp > 0.0 {
+            v * rcp
+        } else {
+            Vec3::ZERO
+        };
+        let mut cos_w = self.w.dot(wi);
+        if self.two_sided {
+            cos_w = cos_w.abs();
+        }
+        let sin_w = safe_sqrt(1.0 - cos_w * cos_w);
+        // The cone the bounding sphere subtends (cone::bound_subtended_directions).
+        let cos_b = if dist2 <= self.radius2 || dist2 == 0.0 {
+            -1.0
+        } else {
+            safe_sqrt(1.0 - self.radius2 / dist2)
+        };
+        let sin_b = safe_sqrt(1.0 - cos_b.powi(2));
+        let (cos_o, sin_o) = (self.cos_theta_o, self.sin_theta_o);
+        let cos_x = cos_sub_clamped(sin_w, cos_w, sin_o, cos_o);
+        let sin_x = sin_sub_clamped(sin_w, cos_w, sin_o, cos_o);
+        let cos_p = cos_sub_clamped(sin_x, cos_x, sin_b, cos_b);
+        if cos_p <= self.cos_theta_e {
+            return 0.0;
+        }
+        let cos_i = at.n.dot(-wi);
+        let sin_i = safe_sqrt(1.0 - cos_i * cos_i);
+        let cos_pi = cos_sub_clamped(sin_i, cos_i, sin_b, cos_b);
+        if cos_pi <= 0.0 {
+            return 0.0;
+        }
+        if at.n.dot(self.centre - at.p) + at.n.abs().dot(self.half) <= 0.0 {
+            return 0.0;
+        }
+        let importance = self.phi * cos_p / d2 * cos_pi;
+        if importance.is_finite() {
+            importance.max(0.0)
+        } else {
+            0.0
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Aabb;
+
+    #[test]
+    fn importance_is_the_readable_versions_bit_for_bit() {
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
+        };
+        let mut nonzero = 0;
+        for i in 0..200_000 {
+            let lo = Vec3::new(next(), next(), next()) * 4.0;
+            // Flat, point-like and solid boxes.
+            let size = match i % 3 {
+                0 => Vec3::new(next().abs(), 0.0, next().abs()),
+                1 => Vec3::ZERO,
+                _ => Vec3::new(next(), next(), next()).abs() * 3.0,
+            };
+            let b = LightBounds {
+                aabb: Aabb {
+                    min: lo,
+                    max: lo + size,
+                },
+                phi: next().abs() * 10.0,
+                w: Vec3::new(next(), next(), next()).normalize_or(Vec3::Z),
+                cos_theta_o: next(),
+                cos_theta_e: if i % 2 == 0 { 0.0 } else { next() },
+                two_sided: i % 5 == 0,
+            };
+            // Some points inside the box and on it.
+            let p = if i % 7 == 0 {
+                lo + 0.5 * size
+            } else {
+                Vec3::new(next(), next(), next()) * 6.0
+            };
+            let at = ShadingPoint {
+                p,
+                ng: Vec3::Y,
+                n: Vec3::new(next(), next(), next()).normalize_or(Vec3::Y),
+            };
+            let (a, e) = (PreparedBounds::new(&b).importance(&at), b.importance(&at));
+            assert_eq!(a.to_bits(), e.to_bits(), "{b:?} at {at:?}: {a} vs {e}");
+            nonzero += (e > 0.0) as u32;
+        }
+        assert!(nonzero > 50_000, "only {nonzero} cases with importance");
+    }
+}
