@@ -142,3 +142,75 @@ fn point_light_irradiance_is_exact() {
             .is_none()
     );
 }
+
+/// `projected-solid-angle` draws ∝ cos θ, so on an unoccluded Lambertian plane every
+/// sample's estimate L·cos θ/pdf is the irradiance itself: on a grid of receiver points
+/// under a rectangle, a triangle, the concave L and a convex pentagon, each of 256
+/// samples is within 2·10⁻⁵ of Lambert's formula (the issue asks for a relative variance
+/// below 10⁻⁶ at 1 spp; this is below 10⁻⁹). Where the horizon cuts the light (tilted
+/// receivers), the samples still agree with each other to 10⁻⁴ (there is no closed form
+/// here to compare with; near the horizon cos θ is small, and the f32 rounding of the
+/// light point, ~6·10⁻⁸, moves it by up to 10⁻⁴ of itself).
+#[test]
+fn projected_solid_angle_estimates_are_exact_on_a_lambertian_plane() {
+    use lightlab::light::{LightSampling, PolygonLight};
+    let pentagon: Vec<Vec3> = (0..5)
+        .map(|k| {
+            let a = -std::f32::consts::TAU * k as f32 / 5.0;
+            Vec3::new(0.6 * a.cos(), 0.6 * a.sin(), 1.0)
+        })
+        .collect();
+    let mut lights: Vec<(String, TestLight, Option<Vec<Vec3>>)> = [
+        TestShape::Rectangle,
+        TestShape::Triangle,
+        TestShape::Polygon,
+    ]
+    .iter()
+    .map(|&s| {
+        (
+            format!("{s:?}"),
+            light(s, LightSampling::ProjectedSolidAngle),
+            outline(s),
+        )
+    })
+    .collect();
+    let mut pentagon_light = light(TestShape::Polygon, LightSampling::ProjectedSolidAngle);
+    pentagon_light.light =
+        Light::Polygon(PolygonLight::new(&pentagon, Spectrum::splat(RADIANCE)).expect("pentagon"));
+    lights.push(("pentagon".into(), pentagon_light, Some(pentagon.clone())));
+    let mut rng = Rng32::new(17);
+    for (name, light, outline) in &lights {
+        let outline = outline.as_ref().expect("planar");
+        for i in 0..9 {
+            for j in 0..9 {
+                let p = Vec3::new(-2.0 + 0.5 * i as f32, -2.0 + 0.5 * j as f32, 0.0);
+                for (tilted, n) in [
+                    (false, Vec3::Z),
+                    (true, Vec3::new(0.9, 0.2, 0.4).normalize()),
+                ] {
+                    let at = at(p, n);
+                    let estimates: Vec<f64> = (0..256)
+                        .filter_map(|_| light.sample(&at, rng.next_2d()))
+                        .map(|ls| RADIANCE as f64 * at.n.dot(ls.w_in) as f64 / ls.pdf as f64)
+                        .collect();
+                    let (lo, hi) = estimates
+                        .iter()
+                        .fold((f64::MAX, f64::MIN), |(lo, hi), &e| (lo.min(e), hi.max(e)));
+                    if tilted {
+                        assert!(
+                            estimates.is_empty() || (hi - lo) <= 1e-4 * hi,
+                            "{name} at {p} tilted: estimates from {lo} to {hi}"
+                        );
+                        continue;
+                    }
+                    assert_eq!(estimates.len(), 256, "{name} at {p}: samples lost");
+                    let exact = lambert_irradiance(p, n, outline, RADIANCE);
+                    assert!(
+                        (lo - exact).abs() <= 2e-5 * exact && (hi - exact).abs() <= 2e-5 * exact,
+                        "{name} at {p}: estimates from {lo} to {hi}, exact {exact}"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -1,4 +1,4 @@
-//! Planar polygon emitters, convex or concave (simple outlines). Two strategies:
+//! Planar polygon emitters, convex or concave (simple outlines). Three strategies:
 //! - `area`: a uniform point by rejection from the polygon's bounding rectangle in its
 //!   plane, as on the lecture's slide (density 1/A);
 //! - `solid-angle`: a triangle of the ear-clipped triangulation chosen with probability
@@ -12,22 +12,27 @@
 //! (Ω_i/ΣΩ)·(1/A_i)·d²/cos θy. Which triangles are unsafe depends only on the shading
 //! point, so `sample` and `pdf` agree.
 //!
+//! - `projected-solid-angle`: a triangle with probability Ω⊥_i/ΣΩ⊥ (its projected solid
+//!   angle above the horizon, Lambert's formula), then a direction ∝ cos θ in it
+//!   ([`ProjectedPolygon`]); the density is cos θ/ΣΩ⊥ over the polygon.
+//!
 //! The polygon's geometry in the scene is its triangulation (one mesh whose triangles all
 //! point to this light), so it is intersectable like any mesh.
 
-use glam::{Vec2, Vec3};
+use glam::{DVec2, Vec2, Vec3};
 
 use super::area::{
     EmitterKind, LightPoint, LightSampling, diffuse_emitted, diffuse_power, light_sample,
     uniform_area_pdf,
 };
 use super::area::{cosine_weights, hit_plane, safe_spherical_triangle, warped_pdf, warped_sample};
+use super::area::{hit_plane64, projected_density, visible_projected_solid_angle};
 use super::{LightSample, ShadingPoint};
 use crate::math::Spectrum;
 use crate::sampling::rng::hash_words;
 use crate::sampling::warp::{
-    Polygon, PolygonError, spherical_triangle_solid_angle, square_to_triangle_sqrt, triangle_area,
-    triangle_to_barycentrics,
+    Polygon, PolygonError, ProjectedPolygon, spherical_triangle_solid_angle,
+    square_to_triangle_sqrt, triangle_area, triangle_to_barycentrics,
 };
 use crate::sampling::{Rng32, Uniform};
 
@@ -140,7 +145,9 @@ impl PolygonLight {
     ) -> Option<LightSample> {
         let n = self.polygon.normal();
         let strategy = Self::strategy(sampling);
-        let point = if matches!(
+        let point = if strategy == LightSampling::ProjectedSolidAngle {
+            self.sample_projected(at, u)?
+        } else if matches!(
             strategy,
             LightSampling::SolidAngle | LightSampling::SolidAngleCos
         ) {
@@ -207,6 +214,12 @@ impl PolygonLight {
     /// with normal `ny`) with strategy `sampling` (resolved for polygons).
     pub fn pdf(&self, at: &ShadingPoint, y: Vec3, ny: Vec3, sampling: LightSampling) -> f32 {
         let strategy = Self::strategy(sampling);
+        if strategy == LightSampling::ProjectedSolidAngle {
+            return match self.total_projected_solid_angle(at) {
+                Some(total) => projected_density(at, y, total),
+                None => 0.0,
+            };
+        }
         if !matches!(
             strategy,
             LightSampling::SolidAngle | LightSampling::SolidAngleCos
@@ -214,6 +227,53 @@ impl PolygonLight {
             return uniform_area_pdf(at.p, y, ny, self.polygon.area());
         }
         self.solid_angle_pdf(at, y, ny, strategy)
+    }
+
+    /// Ω⊥ of triangle `i` above the horizon of `at` (zero when below
+    /// [`MIN_PROJECTED_SOLID_ANGLE`](crate::sampling::warp::MIN_PROJECTED_SOLID_ANGLE)).
+    fn projected_solid_angle(&self, at: &ShadingPoint, i: usize) -> f64 {
+        visible_projected_solid_angle(&self.triangle(i).map(|v| v.as_dvec3()), at).unwrap_or(0.0)
+    }
+
+    /// ΣΩ⊥_i over the triangulation, or `None` when no triangle is visible from `at`.
+    fn total_projected_solid_angle(&self, at: &ShadingPoint) -> Option<f64> {
+        let total: f64 = (0..self.polygon.triangles().len())
+            .map(|i| self.projected_solid_angle(at, i))
+            .sum();
+        (total > 0.0 && total.is_finite()).then_some(total)
+    }
+
+    /// `projected-solid-angle`: a triangle of the triangulation with probability
+    /// Ω⊥_i/ΣΩ⊥ (u.x reused after the choice), then a direction ∝ cos θ in it; the
+    /// triangles do not overlap, so the density is cos θ/ΣΩ⊥ over the whole polygon.
+    fn sample_projected(&self, at: &ShadingPoint, u: Vec2) -> Option<LightPoint> {
+        let total = self.total_projected_solid_angle(at)?;
+        let count = self.polygon.triangles().len();
+        let mut target = u.x as f64 * total;
+        let mut chosen = None;
+        for i in 0..count {
+            let omega = self.projected_solid_angle(at, i);
+            if omega > 0.0 {
+                chosen = Some((i, (target / omega).clamp(0.0, 1.0)));
+                if target < omega {
+                    break;
+                }
+                target -= omega;
+            }
+        }
+        let (i, reused) = chosen?;
+        let vertices = self.triangle(i).map(|v| v.as_dvec3());
+        let (x, n) = (at.p.as_dvec3(), at.n.as_dvec3());
+        let triangle = ProjectedPolygon::new(x, n, &vertices)?;
+        let w = triangle
+            .sample(DVec2::new(reused.min(1.0 - f64::EPSILON), u.y as f64))
+            .0;
+        let y = hit_plane64(x, w, vertices[0], self.polygon.normal().as_dvec3())?.as_vec3();
+        Some(LightPoint {
+            y,
+            ny: self.polygon.normal(),
+            pdf: projected_density(at, y, total),
+        })
     }
 
     /// The density of [`PolygonLight::sample_solid_angle`]: the triangle's choice

@@ -93,6 +93,10 @@ named_enum! {
         /// Rectangles, triangles and polygons: solid-angle sampling after a bilinear warp
         /// of the square weighted by cos θ at the corners (Hart et al. 2020), ≈ ∝ cos θx.
         SolidAngleCos => "solid-angle-cos",
+        /// Rectangles, triangles and polygons: exactly ∝ cos θx over the part above the
+        /// horizon (projected solid angle; after Peters 2021), so an unoccluded constant
+        /// emitter over a Lambertian receiver gives every sample the same value.
+        ProjectedSolidAngle => "projected-solid-angle",
         /// The lowest-variance strategy of each shape.
         Best => "best",
     }

@@ -125,7 +125,7 @@ render_patch! {
     light_samples: u32 = flag::LIGHT_SAMPLES,
     /// BSDF samples per estimate of the `mis` estimator (1 to 1024).
     bsdf_samples: u32 = flag::BSDF_SAMPLES,
-    /// Area-light sampling: area, visible-area, solid-angle, geometric, solid-angle-cos, best (per shape).
+    /// Area-light sampling: area, visible-area, solid-angle, geometric, solid-angle-cos, projected-solid-angle, best (per shape).
     light_sampling: LightSampling = flag::LIGHT_SAMPLING,
     /// Light selection among many lights: uniform, power, adaptive, bvh, ris.
     light_select: LightSelect = flag::LIGHT_SELECT,

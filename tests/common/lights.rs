@@ -37,9 +37,18 @@ pub const STRATEGIES: [(TestShape, &[LightSampling]); 5] = {
             TestShape::Sphere,
             &[Area, VisibleArea, SolidAngle, Geometric],
         ),
-        (TestShape::Rectangle, &[Area, SolidAngle, SolidAngleCos]),
-        (TestShape::Triangle, &[Area, SolidAngle, SolidAngleCos]),
-        (TestShape::Polygon, &[Area, SolidAngle, SolidAngleCos]),
+        (
+            TestShape::Rectangle,
+            &[Area, SolidAngle, SolidAngleCos, ProjectedSolidAngle],
+        ),
+        (
+            TestShape::Triangle,
+            &[Area, SolidAngle, SolidAngleCos, ProjectedSolidAngle],
+        ),
+        (
+            TestShape::Polygon,
+            &[Area, SolidAngle, SolidAngleCos, ProjectedSolidAngle],
+        ),
         (TestShape::Disk, &[Area, SolidAngle]),
     ]
 };

@@ -139,7 +139,7 @@ pub const FIGURES: &[Figure] = &[
     },
     Figure {
         name: "rectangle-strategies",
-        description: "a rectangle light standing almost edge-on over a plane: p1 uniform area (horizon rejection) vs solid angle (Ureña et al. 2013) vs solid angle after a bilinear cos θ warp (Hart et al. 2020, an approximation of p3 ∝ G; exact projected solid angle is not implemented for planar lights)",
+        description: "a rectangle light standing almost edge-on over a plane: p1 uniform area (horizon rejection) vs solid angle (Ureña et al. 2013) vs solid angle after a bilinear cos θ warp (Hart et al. 2020, an approximation of p ∝ G) vs exact projected solid angle (p ∝ G, after Peters 2021)",
         kind: FigureKind::Panels(&[Panel {
             title: "rectangle-strategies",
             scene: "builtin:sphere-near-plane?emitters=rectangle",
@@ -153,12 +153,25 @@ pub const FIGURES: &[Figure] = &[
                     "solid angle, cos-warped",
                     "--estimator light --light-sampling solid-angle-cos",
                 ),
+                (
+                    "projected solid angle",
+                    "--estimator light --light-sampling projected-solid-angle",
+                ),
             ],
             spp: 16,
             reference: "--estimator mis --light-sampling solid-angle",
             reference_spp: 1024,
             insets: &[],
         }]),
+    },
+    Figure {
+        name: "projected-solid-angle",
+        description: "solid angle vs solid angle after the bilinear cos θ warp (Hart et al. 2020) vs exact projected solid angle (∝ cos θ above the horizon, after Peters 2021), light estimator at equal spp, for a rectangle, a mesh of triangles and a concave polygon; on the Lambertian plane projected solid angle leaves only the shadows' noise",
+        kind: FigureKind::Panels(&[
+            projected_panel("rectangle", "builtin:sphere-near-plane?emitters=rectangle"),
+            projected_panel("triangle", "builtin:sphere-near-plane?emitters=mesh"),
+            projected_panel("polygon", "builtin:sphere-near-plane?emitters=polygon"),
+        ]),
     },
     Figure {
         name: "many-lights",
@@ -254,6 +267,31 @@ const fn shape_panel(title: &'static str, scene: &'static str) -> Panel {
             (
                 "solid angle",
                 "--estimator light --light-sampling solid-angle",
+            ),
+        ],
+        spp: 16,
+        reference: "--estimator mis --light-sampling solid-angle",
+        reference_spp: 1024,
+        insets: &[],
+    }
+}
+
+const fn projected_panel(title: &'static str, scene: &'static str) -> Panel {
+    Panel {
+        title,
+        scene,
+        strategies: &[
+            (
+                "solid angle",
+                "--estimator light --light-sampling solid-angle",
+            ),
+            (
+                "solid angle, cos-warped",
+                "--estimator light --light-sampling solid-angle-cos",
+            ),
+            (
+                "projected solid angle",
+                "--estimator light --light-sampling projected-solid-angle",
             ),
         ],
         spp: 16,

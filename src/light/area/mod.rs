@@ -8,6 +8,7 @@
 
 mod cosine_warp;
 mod disk;
+mod projected;
 mod rectangle;
 mod sphere;
 mod sphere_geometric;
@@ -16,6 +17,9 @@ mod textured;
 mod triangle;
 
 pub(crate) use cosine_warp::{pdf as warped_pdf, sample as warped_sample};
+pub(crate) use projected::{
+    density as projected_density, hit_plane64, visible_projected_solid_angle,
+};
 pub use strategies::{EmitterKind, UnsupportedSampling, check_sampling, sampling_summary};
 pub use textured::{EmissionTexture, UntexturableShape, uv_at as texture_uv_at};
 pub(crate) use triangle::{cosine_weights, safe_spherical_triangle};

@@ -3,7 +3,8 @@
 //! `solid-angle-cos` (the same after a bilinear cosine warp, Hart et al. 2020), which
 //! falls back to `area` where the spherical rectangle is too small to be sampled safely
 //! ([`SphericalRectangle::new`] returns `None`). The fall-back depends only on the
-//! shading point, so `sample` and `pdf` always agree on it.
+//! shading point, so `sample` and `pdf` always agree on it. `projected-solid-angle`
+//! draws ∝ cos θ over the part above the horizon (see the `projected` module).
 //!
 //! With the render's fast paths on (the default), `solid-angle` uses
 //! [`FastSphericalRectangle`]: the same map without inverse trigonometry in f64, on the
@@ -11,7 +12,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::{LightPoint, LightSampling, cosine_warp, hit_plane, uniform_area_pdf};
+use super::{LightPoint, LightSampling, cosine_warp, hit_plane, projected, uniform_area_pdf};
 use crate::geometry::shape::Rectangle;
 use crate::light::ShadingPoint;
 use crate::sampling::warp::{FastSphericalRectangle, SphericalRectangle};
@@ -47,6 +48,9 @@ pub(super) fn sample(
     at: &ShadingPoint,
     u: Vec2,
 ) -> Option<LightPoint> {
+    if strategy == LightSampling::ProjectedSolidAngle {
+        return projected::sample(r.corners(), r.normal, at, u);
+    }
     if fast && strategy == LightSampling::SolidAngle {
         if let Some(sr) = FastSphericalRectangle::new(at.p, r.o, r.ea, r.eb) {
             let (_, offset, pdf) = sr.sample(u);
@@ -94,6 +98,9 @@ pub(super) fn pdf(
     y: Vec3,
     ny: Vec3,
 ) -> f32 {
+    if strategy == LightSampling::ProjectedSolidAngle {
+        return projected::pdf(r.corners(), at, y);
+    }
     if fast && strategy == LightSampling::SolidAngle {
         return match FastSphericalRectangle::solid_angle_at(at.p, r.o, r.ea, r.eb) {
             Some(s) => 1.0 / s,

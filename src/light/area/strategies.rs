@@ -72,7 +72,7 @@ impl EmitterKind {
         match self {
             EmitterKind::Sphere => &[Area, VisibleArea, SolidAngle, Geometric],
             EmitterKind::Rectangle | EmitterKind::Triangle | EmitterKind::Polygon => {
-                &[Area, SolidAngle, SolidAngleCos]
+                &[Area, SolidAngle, SolidAngleCos, ProjectedSolidAngle]
             }
             EmitterKind::Disk => &[Area, SolidAngle],
         }
@@ -250,7 +250,7 @@ mod tests {
             "{text}"
         );
         assert!(
-            text.contains("area, solid-angle, solid-angle-cos, best"),
+            text.contains("area, solid-angle, solid-angle-cos, projected-solid-angle, best"),
             "{text}"
         );
     }

@@ -7,10 +7,12 @@
 //! constructor returns `None`) or within [`MAX_SOLID_ANGLE_FRACTION`] of a hemisphere (the
 //! shading point almost on the triangle, where its vertices are nearly coplanar with it).
 //! The choice depends only on the shading point, so `sample` and `pdf` agree on it.
+//! `projected-solid-angle` draws ∝ cos θ over the part above the horizon (the
+//! `projected` module).
 
 use glam::{Vec2, Vec3};
 
-use super::{LightPoint, LightSampling, cosine_warp, hit_plane, uniform_area_pdf};
+use super::{LightPoint, LightSampling, cosine_warp, hit_plane, projected, uniform_area_pdf};
 use crate::geometry::shape::Triangle;
 use crate::light::ShadingPoint;
 use crate::math::PI;
@@ -78,6 +80,9 @@ pub(super) fn sample(
     at: &ShadingPoint,
     u: Vec2,
 ) -> Option<LightPoint> {
+    if strategy == LightSampling::ProjectedSolidAngle {
+        return projected::sample(t.vertices(), t.normal(), at, u);
+    }
     let ny = t.normal();
     match spherical(t, strategy, at) {
         Some((st, weights)) => {
@@ -105,6 +110,9 @@ pub(super) fn pdf(
     y: Vec3,
     ny: Vec3,
 ) -> f32 {
+    if strategy == LightSampling::ProjectedSolidAngle {
+        return projected::pdf(t.vertices(), at, y);
+    }
     match spherical(t, strategy, at) {
         Some((st, None)) => 1.0 / st.solid_angle(),
         Some((st, weights)) => cosine_warp::pdf(&st, weights, (y - at.p).normalize()),

@@ -426,8 +426,76 @@ fn spherical_entries() -> Vec<Entry> {
     list
 }
 
+/// Convex outlines sampled ∝ cos θ (projected solid angle): near, far, cut by the
+/// horizon, and around the zenith.
+fn projected_entries() -> Vec<Entry> {
+    let near = [
+        Vec3::new(-1.0, -0.5, 0.3),
+        Vec3::new(1.2, -0.8, 0.5),
+        Vec3::new(0.2, 1.0, 0.4),
+    ];
+    let far_rectangle = [
+        Vec3::new(-0.5, -0.4, 1.0),
+        Vec3::new(0.6, -0.4, 1.0),
+        Vec3::new(0.6, 0.5, 1.2),
+        Vec3::new(-0.5, 0.5, 1.2),
+    ];
+    let grazing = [
+        Vec3::new(1.0, -1.0, 0.0),
+        Vec3::new(1.0, 1.0, 0.0),
+        Vec3::new(2.5, 0.0, 0.0),
+    ];
+    let around_zenith = [
+        Vec3::new(-0.3, -0.6, 0.5),
+        Vec3::new(0.7, -0.6, 0.5),
+        Vec3::new(0.7, 0.4, 0.5),
+        Vec3::new(-0.3, 0.4, 0.5),
+    ];
+    let cases: [(&str, Vec3, Vec3, &[Vec3]); 4] = [
+        ("triangle-near", Vec3::ZERO, Vec3::Z, &near),
+        (
+            "rectangle-far",
+            Vec3::new(0.3, -0.2, -60.0),
+            Vec3::Z,
+            &far_rectangle,
+        ),
+        (
+            "triangle-horizon",
+            Vec3::new(0.0, 0.0, 0.25),
+            Vec3::new(0.2, 0.0, 1.0).normalize(),
+            &grazing,
+        ),
+        ("rectangle-zenith", Vec3::ZERO, Vec3::Z, &around_zenith),
+    ];
+    let mut list = Vec::new();
+    for (case, from, normal, outline) in cases {
+        let vertices: Vec<_> = outline.iter().map(|v| v.as_dvec3()).collect();
+        let Some(p) = ProjectedPolygon::new(from.as_dvec3(), normal.as_dvec3(), &vertices) else {
+            continue;
+        };
+        let description = format!(
+            "convex polygon ∝ cos θ above the horizon (projected solid angle, after Peters 2021), {case}, Ω⊥ {:.2e} sr",
+            p.projected_solid_angle()
+        );
+        let q = p.clone();
+        list.push(entry(
+            &format!("projected-polygon-{case}"),
+            &description,
+            cap_around(from, outline),
+            // The density is what `pdf` says of the f32 direction returned.
+            square(move |u| {
+                let w = p.sample(u.as_dvec2()).0.as_vec3();
+                (w, p.pdf(w.as_dvec3()) as f32)
+            }),
+            boxed(move |w: Vec3| q.pdf(w.as_dvec3()) as f32),
+        ));
+    }
+    list
+}
+
 pub(super) fn entries() -> Vec<Entry> {
     let mut list = basic_entries();
+    list.extend(projected_entries());
     list.extend(lobe_entries());
     list.extend(planar_entries());
     list.extend(spherical_entries());

@@ -1,0 +1,702 @@
+//! Directions in a convex planar polygon seen from a shading point, with density
+//! proportional to cos θ (the *projected* solid angle), exactly: p(ω) = cos θ / Ω⊥.
+//! For a Lambertian receiver under a constant emitter the unoccluded estimate is then
+//! the same for every sample (the lecture's "p ∝ G" for planar lights).
+//!
+//! The construction follows the idea of Peters 2021 ("BRDF Importance Sampling for
+//! Polygonal Lights", ACM TOG 40(4)): by Nusselt's analogue, uniform points in the
+//! polygon's orthographic projection onto the tangent disk are cos-distributed
+//! directions (Malley). The polygon is clipped to the upper hemisphere first (the
+//! lecture's horizon, exactly: nothing is drawn below it). Each edge is a great-circle
+//! arc whose projection is an ellipse arc around the origin, and the sector between
+//! the origin and the projection of an arc of length s on a great circle with unit
+//! normal n has area ½·n_z·s (Green's theorem; summed over the edges this is Lambert's
+//! form-factor formula Ω⊥ = ½ Σ n_z,i θ_i). So the marginal in azimuth φ has a CDF
+//! made of arc lengths, and at each φ the projected region is the radial interval
+//! [r_in(φ), r_out(φ)] between an inner and an outer edge (r_in = 0 when the zenith is
+//! inside), where r² = n_z² / (n_z² + (n·d)²) for the direction d of azimuth φ.
+//!
+//! Sampling inverts the CDF: u.x picks an azimuth interval between vertex azimuths and
+//! then φ inside it — in closed form along the outer great circle when there is no inner
+//! edge, otherwise by safeguarded Newton iteration on the CDF (its derivative is
+//! ½(r_out² − r_in²) ≥ 0) — and u.y places r² uniformly in [r_in², r_out²]. All in f64.
+
+use glam::{DVec2, DVec3};
+
+/// Most vertices a polygon may have here (a quad gains one when clipped at the horizon).
+pub const MAX_PROJECTED_VERTICES: usize = 8;
+
+/// Below this projected solid angle (sr) a polygon is treated as invisible: it could
+/// contribute at most L·10⁻¹² of irradiance.
+pub const MIN_PROJECTED_SOLID_ANGLE: f64 = 1e-12;
+
+/// An orthonormal frame around a unit normal, in f64 (Duff et al. 2017, "Building an
+/// Orthonormal Basis, Revisited", JCGT 6(1)).
+#[derive(Clone, Copy, Debug)]
+struct Frame64 {
+    s: DVec3,
+    t: DVec3,
+    n: DVec3,
+}
+
+impl Frame64 {
+    fn new(n: DVec3) -> Frame64 {
+        let sign = 1f64.copysign(n.z);
+        let a = -1.0 / (sign + n.z);
+        let b = n.x * n.y * a;
+        Frame64 {
+            s: DVec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
+            t: DVec3::new(b, sign + n.y * n.y * a, -n.y),
+            n,
+        }
+    }
+    fn to_local(self, v: DVec3) -> DVec3 {
+        DVec3::new(v.dot(self.s), v.dot(self.t), v.dot(self.n))
+    }
+    fn to_world(self, v: DVec3) -> DVec3 {
+        self.s * v.x + self.t * v.y + self.n * v.z
+    }
+}
+
+/// The polygon (world-space `vertices`) as seen from `x`, in the frame of `n`, clipped to
+/// z ≥ 0 (Sutherland–Hodgman against the plane through `x`: the spherical polygon is
+/// the central projection of the planar one, so clipping the plane polygon clips the
+/// spherical one at the horizon) and normalised to unit directions. Empty when fewer
+/// than three vertices remain.
+fn clipped_directions(
+    frame: &Frame64,
+    x: DVec3,
+    vertices: &[DVec3],
+) -> ([DVec3; MAX_PROJECTED_VERTICES], usize) {
+    let mut out = [DVec3::ZERO; MAX_PROJECTED_VERTICES];
+    let mut len = 0;
+    let k = vertices.len();
+    if k > MAX_PROJECTED_VERTICES - 1 {
+        return (out, 0);
+    }
+    let mut push = |v: DVec3| {
+        if let Some(d) = v.try_normalize().filter(|_| len < MAX_PROJECTED_VERTICES) {
+            // Drop repeated vertices (a corner exactly on the horizon is emitted twice).
+            if len == 0 || (d - out[len - 1]).length_squared() > 1e-30 {
+                out[len] = d;
+                len += 1;
+            }
+        }
+    };
+    for i in 0..k {
+        let p = frame.to_local(vertices[i] - x);
+        let q = frame.to_local(vertices[(i + 1) % k] - x);
+        if p.z >= 0.0 {
+            push(p);
+        }
+        if (p.z >= 0.0) != (q.z >= 0.0) {
+            let mut c = p + (q - p) * (p.z / (p.z - q.z));
+            c.z = 0.0;
+            push(c);
+        }
+    }
+    if len > 1 && (out[0] - out[len - 1]).length_squared() <= 1e-30 {
+        len -= 1;
+    }
+    if len < 3 {
+        len = 0;
+    }
+    (out, len)
+}
+
+/// Signed area of the projected sector swept by the arc from `a` to `b` (unit vectors):
+/// ½·n_z·θ with n the arc's unit normal and θ its length.
+fn sector_area(a: DVec3, b: DVec3) -> f64 {
+    let c = a.cross(b);
+    let s = c.length();
+    if s == 0.0 {
+        return 0.0;
+    }
+    0.5 * (c.z / s) * s.atan2(a.dot(b))
+}
+
+/// Ω⊥ of the clipped polygon `v[..len]` (signed: positive when counter-clockwise seen
+/// from the normal's side).
+fn signed_projected_area(v: &[DVec3]) -> f64 {
+    (0..v.len())
+        .map(|i| sector_area(v[i], v[(i + 1) % v.len()]))
+        .sum()
+}
+
+/// The projected solid angle Ω⊥ = ∫ cos θ dω of the convex polygon `vertices` above the
+/// horizon of (`x`, `n`): Lambert's formula after clipping. Zero when nothing is above.
+pub fn projected_solid_angle(x: DVec3, n: DVec3, vertices: &[DVec3]) -> f64 {
+    let frame = Frame64::new(n);
+    let (v, len) = clipped_directions(&frame, x, vertices);
+    signed_projected_area(&v[..len]).abs()
+}
+
+/// One edge seen as a boundary in azimuth: its great circle's unit normal.
+#[derive(Clone, Copy, Debug)]
+struct Edge {
+    normal: DVec3,
+}
+
+impl Edge {
+    /// The point of this edge's great circle (upper half) at the azimuth of the unit
+    /// vector `d` of the xy-plane.
+    fn point_at(&self, d: DVec2) -> DVec3 {
+        let n = self.normal;
+        let nd = n.x * d.x + n.y * d.y;
+        let nz = n.z.abs();
+        // On the circle: n·w = 0 with w = α·d + β·ẑ, α ≥ 0 → w ∝ |n_z|·d − sgn(n_z)(n·d)·ẑ.
+        // A meridian at its own azimuth (n_z = n·d = 0) is taken at the zenith, r = 0.
+        (DVec3::new(nz * d.x, nz * d.y, -n.z.signum() * nd))
+            .try_normalize()
+            .unwrap_or(DVec3::Z)
+    }
+}
+
+/// An azimuth interval [lo, lo + width) with the edges bounding the region over it.
+#[derive(Clone, Copy, Debug)]
+struct Interval {
+    /// Start and width in pseudo-azimuth (see [`pseudo_azimuth`]) from the outline's
+    /// start vertex (the intervals are built in this order; the tests read them).
+    #[cfg_attr(not(test), allow(dead_code))]
+    lo: f64,
+    #[cfg_attr(not(test), allow(dead_code))]
+    width: f64,
+    /// Unit xy-directions of the azimuths lo and lo + width.
+    d_lo: DVec2,
+    /// Area of the region over the interval.
+    area: f64,
+    outer: Edge,
+    /// The outer boundary's point at `lo`, and the arc length it runs across the interval.
+    p_outer: DVec3,
+    arc_outer: f64,
+    /// The inner edge and its point at `lo`; `None` where the region reaches the origin
+    /// (the zenith).
+    inner: Option<(Edge, DVec3)>,
+}
+
+/// The angle between two unit vectors, accurate near 0 and π.
+fn arc(p: DVec3, q: DVec3) -> f64 {
+    p.cross(q).length().atan2(p.dot(q))
+}
+
+/// Azimuth steps (in pseudo-angle, half a turn = 2) at most this small are meridian
+/// edges seen through rounding: no interval is cut there.
+const MIN_AZIMUTH_STEP: f64 = 1e-12;
+
+/// The inversion stops when the area it reached is within this fraction of the
+/// interval's area of the target: far below what an f32 direction resolves.
+const NEWTON_TOLERANCE: f64 = 1e-10;
+
+/// Most Newton steps of the inversion (it converges in a few; bisection is the fallback).
+const MAX_NEWTON_STEPS: usize = 60;
+
+/// A convex polygon seen from a shading point, ready for sampling ∝ cos θ.
+#[derive(Clone, Debug)]
+pub struct ProjectedPolygon {
+    frame: Frame64,
+    /// The clipped outline, unit directions in the local frame, counter-clockwise.
+    outline: [DVec3; MAX_PROJECTED_VERTICES],
+    len: usize,
+    intervals: [Interval; MAX_PROJECTED_VERTICES],
+    count: usize,
+    /// Ω⊥, the sampler's normaliser.
+    projected_solid_angle: f64,
+    /// The vertex the pseudo-azimuths are counted from, and whether the outline winds
+    /// around the zenith (then they run over [0, 4), else over (−2, 2)); for the tests.
+    #[cfg_attr(not(test), allow(dead_code))]
+    start: DVec3,
+    #[cfg_attr(not(test), allow(dead_code))]
+    around_zenith: bool,
+}
+
+/// A pseudo-angle of the xy-part of `d`: monotone in the azimuth φ over [−π/2, 3π/2),
+/// with values in [−1, 3) and a(φ + π) = a(φ) + 2, so steps of less than half a turn
+/// stay below 2 and unwrap like angles, without trigonometry.
+fn pseudo_azimuth(d: DVec3) -> f64 {
+    let p = d.y / (d.x.abs() + d.y.abs());
+    if d.x >= 0.0 { p } else { 2.0 - p }
+}
+
+/// The signed pseudo-angle step from the azimuth of `a` to that of `b`, in (−2, 2]
+/// (half a turn is 2).
+fn azimuth_step(a: DVec3, b: DVec3) -> f64 {
+    let step = pseudo_azimuth(b) - pseudo_azimuth(a);
+    if step > 2.0 {
+        step - 4.0
+    } else if step <= -2.0 {
+        step + 4.0
+    } else {
+        step
+    }
+}
+
+/// Six times the signed volume of the cone over the outline: positive when it runs
+/// counter-clockwise seen from outside the sphere (a fan of triple products).
+fn orientation(v: &[DVec3]) -> f64 {
+    (1..v.len() - 1)
+        .map(|i| v[0].dot(v[i].cross(v[i + 1])))
+        .sum()
+}
+
+impl ProjectedPolygon {
+    /// The convex polygon `vertices` (world space, in order, either orientation, at most
+    /// [`MAX_PROJECTED_VERTICES`] − 1) seen from `x` with unit normal `n`; `None` when
+    /// its part above the horizon has Ω⊥ below [`MIN_PROJECTED_SOLID_ANGLE`].
+    pub fn new(x: DVec3, n: DVec3, vertices: &[DVec3]) -> Option<ProjectedPolygon> {
+        let frame = Frame64::new(n);
+        let (mut v, len) = clipped_directions(&frame, x, vertices);
+        let v = &mut v[..len];
+        if len == 0 {
+            return None;
+        }
+        if orientation(v) < 0.0 {
+            v.reverse();
+        }
+        // Each edge's azimuth span (a, b), unwrapped along the outline from a vertex with
+        // an azimuth (a > b on inner edges). A vertex at the zenith has no azimuth: the
+        // edge leaving it spans the wedge at the origin, where r = 0 (its n_z is 0).
+        let has_azimuth = |d: DVec3| d.x * d.x + d.y * d.y > 1e-28;
+        let start = (0..len).find(|&i| has_azimuth(v[i]))?;
+        let xy = |d: DVec3| DVec2::new(d.x, d.y).normalize();
+        let mut spans = [((0.0f64, DVec2::X), (0.0f64, DVec2::X)); MAX_PROJECTED_VERTICES];
+        let (mut acc, mut last) = (0.0, v[start]);
+        for step in 0..len {
+            let i = (start + step) % len;
+            let j = (i + 1) % len;
+            let a = (acc, xy(last));
+            if has_azimuth(v[j]) {
+                // An edge in a plane through the normal (a meridian) keeps its azimuth;
+                // rounding would give it a step of either sign.
+                let step = azimuth_step(last, v[j]);
+                if step.abs() > MIN_AZIMUTH_STEP {
+                    acc += step;
+                    last = v[j];
+                }
+            }
+            spans[i] = (a, (acc, xy(last)));
+        }
+        // Back at the start the azimuth has turned by 2π (4) around the zenith, else by 0.
+        let contains_zenith = acc > 2.0;
+        let mut outline = [DVec3::ZERO; MAX_PROJECTED_VERTICES];
+        outline[..len].copy_from_slice(v);
+        let mut polygon = ProjectedPolygon {
+            frame,
+            outline,
+            len,
+            intervals: [Interval::EMPTY; MAX_PROJECTED_VERTICES],
+            count: 0,
+            projected_solid_angle: 0.0,
+            start: v[start],
+            around_zenith: contains_zenith,
+        };
+        let span = |i: usize| spans[i];
+        let edge = |i: usize| {
+            let c = v[i].cross(v[(i + 1) % len]);
+            c.try_normalize().map(|normal| Edge { normal })
+        };
+        // Breakpoints: the vertices' azimuths, sorted, with their xy-directions.
+        let mut breaks = [(0.0f64, DVec2::X); MAX_PROJECTED_VERTICES + 1];
+        let mut nb = 0;
+        for i in 0..len {
+            let (a, b) = span(i);
+            for t in [a, b] {
+                if !breaks[..nb].iter().any(|x| x.0 == t.0) && nb < breaks.len() {
+                    breaks[nb] = t;
+                    nb += 1;
+                }
+            }
+        }
+        let breaks = &mut breaks[..nb];
+        breaks.sort_by(|a, b| a.0.total_cmp(&b.0));
+
+        let mut cumulative = 0.0;
+        for w in breaks.windows(2) {
+            let ((lo, d_lo), (hi, d_hi)) = (w[0], w[1]);
+            let mid = 0.5 * (lo + hi);
+            let covering = |outer: bool| {
+                (0..len).find_map(|i| {
+                    let ((a, _), (b, _)) = span(i);
+                    let hit = if outer {
+                        a < b && a <= mid && mid <= b
+                    } else {
+                        b < a && b <= mid && mid <= a
+                    };
+                    if hit { Some(edge(i)) } else { None }
+                })
+            };
+            let Some(Some(outer)) = covering(true) else {
+                continue;
+            };
+            let inner = if contains_zenith {
+                None
+            } else {
+                covering(false).flatten().filter(|e| e.normal.z != 0.0)
+            };
+            let interval = Interval::new(lo, hi - lo, (d_lo, d_hi), outer, inner);
+            if !(interval.area > 0.0 && interval.area.is_finite()) {
+                continue;
+            }
+            cumulative += interval.area;
+            if polygon.count < polygon.intervals.len() {
+                polygon.intervals[polygon.count] = interval;
+                polygon.count += 1;
+            }
+        }
+        // Ω⊥ as the sum of the intervals' areas (Lambert's formula up to rounding).
+        polygon.projected_solid_angle = cumulative;
+        (cumulative >= MIN_PROJECTED_SOLID_ANGLE && cumulative.is_finite()).then_some(polygon)
+    }
+
+    /// Ω⊥, the projected solid angle of the part above the horizon.
+    pub fn projected_solid_angle(&self) -> f64 {
+        self.projected_solid_angle
+    }
+
+    /// A world-space unit direction ∝ cos θ in the polygon, and its density per
+    /// steradian (cos θ / Ω⊥).
+    pub fn sample(&self, u: DVec2) -> (DVec3, f64) {
+        let intervals = || self.intervals[..self.count].iter();
+        let mut target = u.x * self.projected_solid_angle;
+        let mut chosen = None;
+        for interval in intervals() {
+            chosen = Some(interval);
+            if target < interval.area {
+                break;
+            }
+            target -= interval.area;
+        }
+        let interval = chosen.expect("a projected polygon has an interval");
+        let target = target.clamp(0.0, interval.area);
+        let (d, r_out2, r_in2) = interval.invert(target);
+        let r2 = (r_in2 + u.y * (r_out2 - r_in2)).clamp(0.0, 1.0);
+        let r = r2.sqrt();
+        let local = DVec3::new(r * d.x, r * d.y, (1.0 - r2).max(0.0).sqrt());
+        (self.frame.to_world(local), self.pdf_local(local.z))
+    }
+
+    /// Density per steradian of [`ProjectedPolygon::sample`] for a world direction `w`:
+    /// cos θ / Ω⊥ inside the clipped polygon, zero outside it.
+    pub fn pdf(&self, w: DVec3) -> f64 {
+        let local = self.frame.to_local(w);
+        let v = &self.outline[..self.len];
+        let inside = (0..v.len()).all(|i| v[i].cross(v[(i + 1) % v.len()]).dot(local) >= 0.0);
+        if inside { self.pdf_local(local.z) } else { 0.0 }
+    }
+
+    fn pdf_local(&self, cos_theta: f64) -> f64 {
+        cos_theta.max(0.0) / self.projected_solid_angle
+    }
+}
+
+impl Interval {
+    /// A placeholder for unused slots.
+    const EMPTY: Interval = Interval {
+        lo: 0.0,
+        width: 0.0,
+        d_lo: DVec2::X,
+        area: 0.0,
+        outer: Edge { normal: DVec3::Z },
+        p_outer: DVec3::Z,
+        arc_outer: 0.0,
+        inner: None,
+    };
+
+    fn new(
+        lo: f64,
+        width: f64,
+        (d_lo, d_hi): (DVec2, DVec2),
+        outer: Edge,
+        inner: Option<Edge>,
+    ) -> Interval {
+        let p_outer = outer.point_at(d_lo);
+        let mut interval = Interval {
+            lo,
+            width,
+            d_lo,
+            area: 0.0,
+            outer,
+            p_outer,
+            arc_outer: arc(p_outer, outer.point_at(d_hi)),
+            inner: inner.map(|e| (e, e.point_at(d_lo))),
+        };
+        let inner_arc = interval.inner.map_or(0.0, |(e, p)| {
+            0.5 * e.normal.z.abs() * arc(p, e.point_at(d_hi))
+        });
+        interval.area = 0.5 * outer.normal.z.abs() * interval.arc_outer - inner_arc;
+        interval
+    }
+
+    /// Area of the region between `lo` and the azimuth of `d` (the tests' CDF): ½|n_z|·(arc length) on
+    /// the outer edge's great circle, minus the same on the inner one.
+    #[cfg(test)]
+    fn area_until(&self, d: DVec2) -> f64 {
+        let outer = 0.5 * self.outer.normal.z.abs() * arc(self.p_outer, self.outer.point_at(d));
+        outer
+            - self
+                .inner
+                .map_or(0.0, |(e, p)| 0.5 * e.normal.z.abs() * arc(p, e.point_at(d)))
+    }
+
+    /// The outer boundary's point an arc length `s` past `p_outer`, towards larger φ.
+    fn outer_point(&self, s: f64) -> DVec3 {
+        let n = self.outer.normal;
+        let tangent = n.cross(self.p_outer) * n.z.signum();
+        let (sin, cos) = s.sin_cos();
+        self.p_outer * cos + tangent * sin
+    }
+
+    /// The azimuth (as a unit xy-direction) where the area over [lo, φ] is `target`,
+    /// with r_out² and r_in² there. Parametrised by the arc length s along the outer
+    /// edge, whose sector grows as ½|n_z|·s: closed form without an inner edge, else
+    /// Newton on F(s) − target with F'(s) = ½|n_z|(1 − r_in²/r_out²) (since
+    /// dφ/ds = |n_z|/r_out² and dF/dφ = ½(r_out² − r_in²)), kept in a shrinking bracket.
+    fn invert(&self, target: f64) -> (DVec2, f64, f64) {
+        let nz_outer = self.outer.normal.z.abs();
+        let at = |s: f64| {
+            let p = self.outer_point(s);
+            let r2 = p.x * p.x + p.y * p.y;
+            let d = if r2 > 0.0 {
+                DVec2::new(p.x, p.y) / r2.sqrt()
+            } else {
+                self.d_lo
+            };
+            (d, r2)
+        };
+        let Some((inner, p_inner)) = self.inner else {
+            let (d, r2) = at((2.0 * target / nz_outer).clamp(0.0, self.arc_outer));
+            return (d, r2, 0.0);
+        };
+        let nz_inner = inner.normal.z.abs();
+        let (mut lo, mut hi) = (0.0, self.arc_outer);
+        let mut s = self.arc_outer * (target / self.area).clamp(0.0, 1.0);
+        let mut result = (self.d_lo, 0.0, 0.0);
+        for _ in 0..MAX_NEWTON_STEPS {
+            let (d, r_out2) = at(s);
+            let q = inner.point_at(d);
+            let r_in2 = (q.x * q.x + q.y * q.y).min(r_out2);
+            result = (d, r_out2, r_in2);
+            let g = 0.5 * nz_outer * s - 0.5 * nz_inner * arc(p_inner, q) - target;
+            if g.abs() <= NEWTON_TOLERANCE * self.area {
+                break;
+            }
+            if g > 0.0 {
+                hi = s;
+            } else {
+                lo = s;
+            }
+            let slope = 0.5 * nz_outer * (1.0 - r_in2 / r_out2);
+            let mut next = s - g / slope;
+            if !(slope > 0.0 && next > lo && next < hi) {
+                next = 0.5 * (lo + hi);
+            }
+            if hi - lo <= 1e-15 * self.arc_outer {
+                break;
+            }
+            s = next;
+        }
+        result
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn d(x: f64, y: f64, z: f64) -> DVec3 {
+        DVec3::new(x, y, z)
+    }
+
+    /// (name, shading point, normal, polygon): far, near, straddling the horizon, around
+    /// the zenith, with a vertex at the zenith, seen from behind (clockwise).
+    fn cases() -> Vec<(&'static str, DVec3, DVec3, Vec<DVec3>)> {
+        let z = DVec3::Z;
+        let square = |h: f64, x0: f64, y0: f64, s: f64| {
+            vec![
+                d(x0, y0, h),
+                d(x0 + s, y0, h),
+                d(x0 + s, y0 + s, h),
+                d(x0, y0 + s, h),
+            ]
+        };
+        vec![
+            (
+                "far",
+                DVec3::ZERO,
+                z,
+                vec![d(3.0, 1.0, 9.0), d(3.4, 1.1, 9.2), d(3.1, 1.6, 8.8)],
+            ),
+            ("near", DVec3::ZERO, z, square(0.3, 0.2, -0.4, 1.0)),
+            (
+                "around-zenith",
+                DVec3::ZERO,
+                z,
+                square(0.5, -0.3, -0.6, 1.0),
+            ),
+            ("zenith-vertex", DVec3::ZERO, z, square(0.7, 0.0, 0.0, 0.8)),
+            (
+                "straddling",
+                DVec3::ZERO,
+                d(-0.3, 0.0, 1.0).normalize(),
+                vec![
+                    d(-1.0, -0.5, 0.2),
+                    d(-1.0, 0.6, 0.3),
+                    d(-1.0, 0.5, -0.6),
+                    d(-1.0, -0.5, -0.5),
+                ],
+            ),
+            ("clockwise", d(0.1, 0.2, 0.0), z, {
+                let mut v = square(0.4, -1.0, 0.3, 0.9);
+                v.reverse();
+                v
+            }),
+        ]
+    }
+
+    /// Ω⊥ by midpoint quadrature over the hemisphere in (cos²θ, φ), where cos θ dω =
+    /// ½ d(cos²θ) dφ, with a ray–plane point-in-polygon test.
+    fn quadrature(x: DVec3, n: DVec3, poly: &[DVec3]) -> f64 {
+        use std::f64::consts::PI;
+        let frame = Frame64::new(n);
+        let normal = (poly[1] - poly[0]).cross(poly[2] - poly[0]).normalize();
+        let inside = |w: DVec3| {
+            let t = (poly[0] - x).dot(normal) / w.dot(normal);
+            if t.is_nan() || t <= 0.0 {
+                return false;
+            }
+            let y = x + w * t;
+            let k = poly.len();
+            let signs: Vec<f64> = (0..k)
+                .map(|i| (poly[(i + 1) % k] - poly[i]).cross(y - poly[i]).dot(normal))
+                .collect();
+            signs.iter().all(|&s| s >= 0.0) || signs.iter().all(|&s| s <= 0.0)
+        };
+        let (nu, nphi) = (1500, 3000);
+        let mut sum = 0.0;
+        for i in 0..nu {
+            let c2 = (i as f64 + 0.5) / nu as f64;
+            let (c, s) = (c2.sqrt(), (1.0 - c2).sqrt());
+            for j in 0..nphi {
+                let phi = 2.0 * PI * (j as f64 + 0.5) / nphi as f64;
+                let w = frame.to_world(d(s * phi.cos(), s * phi.sin(), c));
+                if inside(w) {
+                    sum += 1.0;
+                }
+            }
+        }
+        sum / (nu * nphi) as f64 * PI
+    }
+
+    #[test]
+    fn lamberts_formula_matches_quadrature() {
+        for (name, x, n, poly) in cases() {
+            let exact = projected_solid_angle(x, n, &poly);
+            let numeric = quadrature(x, n, &poly);
+            assert!(
+                (exact - numeric).abs() < 2e-3 * exact.max(1e-3),
+                "{name}: Lambert {exact} vs quadrature {numeric}"
+            );
+            if let Some(p) = ProjectedPolygon::new(x, n, &poly) {
+                let total: f64 = p.intervals[..p.count].iter().map(|i| i.area).sum();
+                assert!(
+                    (total - exact).abs() < 1e-12 * exact,
+                    "{name}: {total} vs {exact}"
+                );
+            }
+        }
+    }
+
+    /// Every sample lies in the polygon and above the horizon, and its density is
+    /// cos θ / Ω⊥, so cos θ / pdf — the unoccluded Lambertian estimate — is Ω⊥ exactly.
+    #[test]
+    fn samples_lie_in_the_polygon_and_the_estimate_is_constant() {
+        for (name, x, n, poly) in cases() {
+            let p = ProjectedPolygon::new(x, n, &poly).expect(name);
+            let omega = p.projected_solid_angle();
+            for i in 0..64 {
+                for j in 0..64 {
+                    let u = DVec2::new((i as f64 + 0.5) / 64.0, (j as f64 + 0.37) / 64.0);
+                    let (w, pdf) = p.sample(u);
+                    assert!((w.length() - 1.0).abs() < 1e-12, "{name}");
+                    assert!(p.pdf(w) > 0.0, "{name}: {w} at {u} outside");
+                    assert!((pdf - p.pdf(w)).abs() <= 1e-12 * pdf, "{name}");
+                    let estimate = w.dot(n) / pdf;
+                    assert!(
+                        (estimate - omega).abs() < 1e-9 * omega,
+                        "{name}: {estimate}"
+                    );
+                }
+            }
+        }
+    }
+
+    /// The map is monotone in u.x along each u.y, as an inversion of the CDF in φ is: the
+    /// fraction of Ω⊥ at azimuths before the sample's is u.x.
+    #[test]
+    fn first_coordinate_is_the_azimuth_cdf() {
+        for (name, x, n, poly) in cases() {
+            let p = ProjectedPolygon::new(x, n, &poly).expect(name);
+            let total: f64 = p.intervals[..p.count].iter().map(|i| i.area).sum();
+            for k in 1..40 {
+                let ux = k as f64 / 40.0;
+                let (w, _) = p.sample(DVec2::new(ux, 0.5));
+                let local = p.frame.to_local(w);
+                // The sample's pseudo-azimuth from the start vertex, as the intervals'.
+                let step = pseudo_azimuth(local) - pseudo_azimuth(p.start);
+                let off = if p.around_zenith {
+                    step.rem_euclid(4.0)
+                } else {
+                    azimuth_step(p.start, local)
+                };
+                // Area over the azimuths before the sample's.
+                let ivs: Vec<&Interval> = p.intervals[..p.count].iter().collect();
+                let mut before = 0.0;
+                for iv in &ivs {
+                    if iv.lo + iv.width <= off {
+                        before += iv.area;
+                    } else if iv.lo <= off {
+                        before += iv.area_until(DVec2::new(local.x, local.y).normalize());
+                    }
+                }
+                let cdf = before / total;
+                assert!((cdf - ux).abs() < 1e-9, "{name}: u.x {ux} gives cdf {cdf}");
+            }
+        }
+    }
+
+    #[test]
+    fn below_the_horizon_is_nothing() {
+        let poly = [d(0.0, 0.0, -1.0), d(1.0, 0.0, -1.0), d(0.0, 1.0, -1.0)];
+        assert!(ProjectedPolygon::new(DVec3::ZERO, DVec3::Z, &poly).is_none());
+        assert_eq!(projected_solid_angle(DVec3::ZERO, DVec3::Z, &poly), 0.0);
+    }
+
+    /// A rectangle with two edges parallel to the receiver's normal (a light facing down
+    /// seen from a wall): those edges are meridians, whose end azimuths differ only by
+    /// rounding. From f32 points they must neither split the azimuth range nor lose
+    /// the polygon (it once returned `None` here, darkening the `assignment` wall by 1%).
+    #[test]
+    fn meridian_edges_from_f32_points() {
+        let s = 0.3f32;
+        let o = glam::Vec3::new(-0.5 * s, 2.4, 1.0 - 0.5 * s);
+        let corners = [
+            o,
+            o + glam::Vec3::new(s, 0.0, 0.0),
+            o + glam::Vec3::new(s, 0.0, s),
+            o + glam::Vec3::new(0.0, 0.0, s),
+        ]
+        .map(|c| c.as_dvec3());
+        let mut rng = crate::sampling::Rng32::new(3);
+        for _ in 0..20_000 {
+            let x = glam::Vec3::new(rng.next_f32() * 6.0 - 3.0, rng.next_f32() * 2.39, -3.0);
+            let x = x.as_dvec3();
+            let p = ProjectedPolygon::new(x, DVec3::Z, &corners).expect("visible");
+            let lambert = projected_solid_angle(x, DVec3::Z, &corners);
+            assert!(
+                (p.projected_solid_angle() - lambert).abs() < 1e-10 * lambert,
+                "{x}"
+            );
+            let (w, pdf) = p.sample(DVec2::new(rng.next_f32() as f64, rng.next_f32() as f64));
+            assert!(w.is_finite() && pdf > 0.0 && p.pdf(w) > 0.0, "{x}");
+        }
+    }
+}
