@@ -92,6 +92,7 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
         .with_light_strategy(settings.light_strategy())
         .with_ris_candidates(settings.ris_candidates);
     let (first, last) = settings.pass.sample_range(settings.spp);
+    let (first, last) = (first + settings.first_sample, last + settings.first_sample);
     let mut film = Film::new(w, h);
     let tiles = tiles(w, h);
     let invalid = AtomicU64::new(0);

@@ -32,6 +32,10 @@ pub struct RenderSettings {
     pub resolution: Option<(u32, u32)>,
     /// Which share of the samples to render.
     pub pass: Pass,
+    /// Index of every pixel's first sample (0 for a render of its own): a timed render's
+    /// later rounds continue the sampler's sequence from the samples already taken, so
+    /// that N samples in rounds are the same points as N in one render.
+    pub first_sample: u32,
     /// Pixel reconstruction filter (the one-pixel box unless a scene file asks).
     pub filter: Filter,
     /// MIS compensation of environment-map sampling (Karlík et al. 2019); allowed only
@@ -77,6 +81,7 @@ impl RenderSettings {
             seed: p.seed.unwrap_or(0),
             resolution: resolution(&scene.camera, p.width, p.height),
             pass: p.pass.unwrap_or(Pass::WHOLE),
+            first_sample: 0,
             filter: scene.filter,
             envmap_compensation: p.envmap_compensation.unwrap_or(false),
             horizon_rejection: p.horizon_rejection != Some(Switch::Off),
