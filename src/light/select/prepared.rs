@@ -5,8 +5,8 @@
 //! again for the pmf of a BSDF sample that reaches a light; on a mesh of 256 emitting
 //! triangles `importance` was a third of the render (perf, 1 thread).
 //!
-//! The arithmetic is the readable version's, operation for operation, so the importance
-//! is the same float (tested bit for bit below).
+//! [`LightBounds::importance`] calls this too, so the formula exists once; the tests keep
+//! the per-visit version it was first written as and check the two bit for bit.
 
 use glam::Vec3;
 
@@ -52,7 +52,13 @@ impl PreparedBounds {
         }
     }
 
-    /// [`LightBounds::importance`] of the bounds this was made from, the same float.
+    /// Importance at shading point `at`: φ · cos θ' / d² · cos θ'_i, where d is the
+    /// distance to the box centre (clamped below by a tenth of half the box diagonal, so
+    /// points near or inside a cluster do not blow up), θ' is the smallest angle between an
+    /// emitter normal and the direction to `at` allowed by the normal cone and the box's
+    /// angular size, and θ'_i the smallest angle between the shading normal and a
+    /// direction into the box. Zero when θ' ≥ θ_e (every emitter faces away) or when the
+    /// whole box lies below the horizon of `at` (Conty Estevez & Kulla 2018).
     #[inline]
     pub fn importance(&self, at: &ShadingPoint) -> f32 {
         if self.phi <= 0.0 {
@@ -60,6 +66,9 @@ impl PreparedBounds {
         }
         let v = at.p - self.centre;
         let dist2 = v.length_squared();
+        // The floor keeps points at a cluster's centre finite. pbrt-v4 clamps d² by half
+        // the diagonal's *length*; a tenth of it, squared, measured 3× lower relMSE on
+        // shirley-100 than the half diagonal squared (0.0128 vs 0.038 at 49 spp).
         let d2 = dist2.max(self.d2_floor);
         if d2 <= 0.0 {
             return 0.0;
@@ -86,16 +95,21 @@ impl PreparedBounds {
         let (cos_o, sin_o) = (self.cos_theta_o, self.sin_theta_o);
         let cos_x = cos_sub_clamped(sin_w, cos_w, sin_o, cos_o);
         let sin_x = sin_sub_clamped(sin_w, cos_w, sin_o, cos_o);
+        // θ' = max(0, θ_w − θ_o − θ_b)
         let cos_p = cos_sub_clamped(sin_x, cos_x, sin_b, cos_b);
         if cos_p <= self.cos_theta_e {
             return 0.0;
         }
+        // θ'_i = max(0, θ_i − θ_b), θ_i between the shading normal and the direction to
+        // the centre; one-sided reflection: nothing from below the horizon.
         let cos_i = at.n.dot(-wi);
         let sin_i = safe_sqrt(1.0 - cos_i * cos_i);
         let cos_pi = cos_sub_clamped(sin_i, cos_i, sin_b, cos_b);
         if cos_pi <= 0.0 {
             return 0.0;
         }
+        // Exact horizon test of the box itself (the bounding sphere above is looser):
+        // max over the box of n·(x − p) = n·(c − p) + Σ_k |n_k|·half-extent_k.
         if at.n.dot(self.centre - at.p) + at.n.abs().dot(self.half) <= 0.0 {
             return 0.0;
         }
@@ -112,9 +126,67 @@ impl PreparedBounds {
 mod tests {
     use super::*;
     use crate::geometry::Aabb;
+    use crate::light::select::cone::bound_subtended_directions;
+
+    /// The formula as first written (per visit, from the bounds alone), kept as the
+    /// oracle of the prepared one.
+    fn readable_importance(b: &LightBounds, at: &ShadingPoint) -> f32 {
+        if b.phi <= 0.0 {
+            return 0.0;
+        }
+        let pc = b.aabb.centroid();
+        // The clamp keeps points at a cluster's centre finite. pbrt-v4 clamps d² by half
+        // the diagonal's *length*; a tenth of it, squared, measured 3× lower relMSE on
+        // shirley-100 than the half diagonal squared (0.0128 vs 0.038 at 49 spp).
+        let half_diagonal = 0.5 * b.aabb.extent().length();
+        let d2 =
+            at.p.distance_squared(pc)
+                .max(0.01 * half_diagonal * half_diagonal);
+        if d2 <= 0.0 {
+            // A point light exactly at the shading point: no direction to it.
+            return 0.0;
+        }
+        // wi: from the cluster towards the shading point.
+        let wi = (at.p - pc).normalize_or_zero();
+        let mut cos_w = b.w.dot(wi);
+        if b.two_sided {
+            cos_w = cos_w.abs();
+        }
+        let sin_w = safe_sqrt(1.0 - cos_w * cos_w);
+        let cone_b = bound_subtended_directions(&b.aabb, at.p);
+        let (cos_b, sin_b) = (cone_b.cos_theta, safe_sqrt(1.0 - cone_b.cos_theta.powi(2)));
+        // θ' = max(0, θ_w − θ_o − θ_b)
+        let sin_o = safe_sqrt(1.0 - b.cos_theta_o * b.cos_theta_o);
+        let cos_x = cos_sub_clamped(sin_w, cos_w, sin_o, b.cos_theta_o);
+        let sin_x = sin_sub_clamped(sin_w, cos_w, sin_o, b.cos_theta_o);
+        let cos_p = cos_sub_clamped(sin_x, cos_x, sin_b, cos_b);
+        if cos_p <= b.cos_theta_e {
+            return 0.0;
+        }
+        // θ'_i = max(0, θ_i − θ_b), θ_i between the shading normal and the direction to
+        // the centre; one-sided reflection: nothing from below the horizon.
+        let cos_i = at.n.dot(-wi);
+        let sin_i = safe_sqrt(1.0 - cos_i * cos_i);
+        let cos_pi = cos_sub_clamped(sin_i, cos_i, sin_b, cos_b);
+        if cos_pi <= 0.0 {
+            return 0.0;
+        }
+        // Exact horizon test of the box itself (the bounding sphere above is looser):
+        // max over the box of n·(x − p) = n·(c − p) + Σ_k |n_k|·half-extent_k.
+        let half = 0.5 * b.aabb.extent();
+        if at.n.dot(pc - at.p) + at.n.abs().dot(half) <= 0.0 {
+            return 0.0;
+        }
+        let importance = b.phi * cos_p / d2 * cos_pi;
+        if importance.is_finite() {
+            importance.max(0.0)
+        } else {
+            0.0
+        }
+    }
 
     #[test]
-    fn importance_is_the_readable_versions_bit_for_bit() {
+    fn importance_is_the_readable_formulas_bit_for_bit() {
         let mut state = 0x9e37_79b9_7f4a_7c15u64;
         let mut next = || {
             state ^= state << 13;
@@ -153,7 +225,10 @@ mod tests {
                 ng: Vec3::Y,
                 n: Vec3::new(next(), next(), next()).normalize_or(Vec3::Y),
             };
-            let (a, e) = (PreparedBounds::new(&b).importance(&at), b.importance(&at));
+            let (a, e) = (
+                PreparedBounds::new(&b).importance(&at),
+                readable_importance(&b, &at),
+            );
             assert_eq!(a.to_bits(), e.to_bits(), "{b:?} at {at:?}: {a} vs {e}");
             nonzero += (e > 0.0) as u32;
         }

@@ -23,6 +23,8 @@
 
 use glam::{DVec2, DVec3};
 
+use super::spherical_triangle::angle_between;
+
 /// Most vertices a polygon may have here (a quad gains one when clipped at the horizon).
 pub const MAX_PROJECTED_VERTICES: usize = 8;
 
@@ -112,7 +114,7 @@ fn sector_area(a: DVec3, b: DVec3) -> f64 {
     if s == 0.0 {
         return 0.0;
     }
-    0.5 * (c.z / s) * s.atan2(a.dot(b))
+    0.5 * (c.z / s) * angle_between(a, b)
 }
 
 /// Ω⊥ of the clipped polygon `v[..len]` (signed: positive when counter-clockwise seen
@@ -150,6 +152,12 @@ impl Edge {
             .try_normalize()
             .unwrap_or(DVec3::Z)
     }
+
+    /// Area of the projected sector under this edge's great circle from its point `p`
+    /// to its point `q`: ½|n_z|·(arc length).
+    fn sector(&self, p: DVec3, q: DVec3) -> f64 {
+        0.5 * self.normal.z.abs() * angle_between(p, q)
+    }
 }
 
 /// An azimuth interval [lo, lo + width) with the edges bounding the region over it.
@@ -172,11 +180,6 @@ struct Interval {
     /// The inner edge and its point at `lo`; `None` where the region reaches the origin
     /// (the zenith).
     inner: Option<(Edge, DVec3)>,
-}
-
-/// The angle between two unit vectors, accurate near 0 and π.
-fn arc(p: DVec3, q: DVec3) -> f64 {
-    p.cross(q).length().atan2(p.dot(q))
 }
 
 /// Azimuth steps (in pseudo-angle, half a turn = 2) at most this small are meridian
@@ -289,7 +292,6 @@ impl ProjectedPolygon {
             start: v[start],
             around_zenith: contains_zenith,
         };
-        let span = |i: usize| spans[i];
         let edge = |i: usize| {
             let c = v[i].cross(v[(i + 1) % len]);
             c.try_normalize().map(|normal| Edge { normal })
@@ -297,8 +299,7 @@ impl ProjectedPolygon {
         // Breakpoints: the vertices' azimuths, sorted, with their xy-directions.
         let mut breaks = [(0.0f64, DVec2::X); MAX_PROJECTED_VERTICES + 1];
         let mut nb = 0;
-        for i in 0..len {
-            let (a, b) = span(i);
+        for &(a, b) in &spans[..len] {
             for t in [a, b] {
                 if !breaks[..nb].iter().any(|x| x.0 == t.0) && nb < breaks.len() {
                     breaks[nb] = t;
@@ -315,7 +316,7 @@ impl ProjectedPolygon {
             let mid = 0.5 * (lo + hi);
             let covering = |outer: bool| {
                 (0..len).find_map(|i| {
-                    let ((a, _), (b, _)) = span(i);
+                    let ((a, _), (b, _)) = spans[i];
                     let hit = if outer {
                         a < b && a <= mid && mid <= b
                     } else {
@@ -416,25 +417,18 @@ impl Interval {
             area: 0.0,
             outer,
             p_outer,
-            arc_outer: arc(p_outer, outer.point_at(d_hi)),
+            arc_outer: angle_between(p_outer, outer.point_at(d_hi)),
             inner: inner.map(|e| (e, e.point_at(d_lo))),
         };
-        let inner_arc = interval.inner.map_or(0.0, |(e, p)| {
-            0.5 * e.normal.z.abs() * arc(p, e.point_at(d_hi))
-        });
-        interval.area = 0.5 * outer.normal.z.abs() * interval.arc_outer - inner_arc;
+        interval.area = interval.area_until(d_hi);
         interval
     }
 
-    /// Area of the region between `lo` and the azimuth of `d` (the tests' CDF): ½|n_z|·(arc length) on
-    /// the outer edge's great circle, minus the same on the inner one.
-    #[cfg(test)]
+    /// Area of the region between `lo` and the azimuth of `d`: the outer edge's sector
+    /// minus the inner edge's.
     fn area_until(&self, d: DVec2) -> f64 {
-        let outer = 0.5 * self.outer.normal.z.abs() * arc(self.p_outer, self.outer.point_at(d));
-        outer
-            - self
-                .inner
-                .map_or(0.0, |(e, p)| 0.5 * e.normal.z.abs() * arc(p, e.point_at(d)))
+        let outer = self.outer.sector(self.p_outer, self.outer.point_at(d));
+        outer - self.inner.map_or(0.0, |(e, p)| e.sector(p, e.point_at(d)))
     }
 
     /// The outer boundary's point an arc length `s` past `p_outer`, towards larger φ.
@@ -466,7 +460,6 @@ impl Interval {
             let (d, r2) = at((2.0 * target / nz_outer).clamp(0.0, self.arc_outer));
             return (d, r2, 0.0);
         };
-        let nz_inner = inner.normal.z.abs();
         let (mut lo, mut hi) = (0.0, self.arc_outer);
         let mut s = self.arc_outer * (target / self.area).clamp(0.0, 1.0);
         let mut result = (self.d_lo, 0.0, 0.0);
@@ -475,7 +468,7 @@ impl Interval {
             let q = inner.point_at(d);
             let r_in2 = (q.x * q.x + q.y * q.y).min(r_out2);
             result = (d, r_out2, r_in2);
-            let g = 0.5 * nz_outer * s - 0.5 * nz_inner * arc(p_inner, q) - target;
+            let g = 0.5 * nz_outer * s - inner.sector(p_inner, q) - target;
             if g.abs() <= NEWTON_TOLERANCE * self.area {
                 break;
             }

@@ -23,7 +23,7 @@ pub fn spherical_triangle_solid_angle(a: DVec3, b: DVec3, c: DVec3) -> f64 {
 }
 
 /// The angle between two vectors, accurate near 0 and π.
-fn angle_between(x: DVec3, y: DVec3) -> f64 {
+pub(crate) fn angle_between(x: DVec3, y: DVec3) -> f64 {
     x.cross(y).length().atan2(x.dot(y))
 }
 
