@@ -46,6 +46,10 @@ pub struct Estimator {
     pub ris: Option<u32>,
     /// Shadow rays traced so far (light and MIS estimators).
     pub shadow_rays: ShadowRays,
+    /// Whether a ray can reach an emitter (an area light or the environment): false when
+    /// every light is a delta light, and then BSDF-sampled rays, which can only score by
+    /// reaching one, contribute exactly zero and are not traced.
+    emitters_reachable: bool,
 }
 
 /// A count of shadow rays shared by the render's threads: one slot (its own cache line)
@@ -101,6 +105,7 @@ impl Estimator {
             lights: LightStrategy::default(),
             ris: (select == LightSelect::Ris).then_some(DEFAULT_RIS_CANDIDATES),
             shadow_rays: ShadowRays::default(),
+            emitters_reachable: scene.lights.iter().any(|l| !l.is_delta()),
         }
     }
 
@@ -209,6 +214,7 @@ impl Estimator {
             shadow_rays: &self.shadow_rays,
             probe,
             optimal,
+            emitters_reachable: self.emitters_reachable,
         };
         match self.kind {
             EstimatorKind::Light => light::estimate(&ctx, src),
@@ -238,9 +244,18 @@ struct Context<'a> {
     probe: Option<&'a Probe>,
     /// The pixel's optimal-MIS state (`--mis optimal`), if any.
     optimal: Option<&'a RefCell<OptimalPixel>>,
+    /// Whether any ray can reach an emitter (see [`Estimator`]).
+    emitters_reachable: bool,
 }
 
 impl Context<'_> {
+    /// Whether BSDF-sampled rays are worth tracing: some emitter can be reached, or a
+    /// probe records every sample drawn.
+    #[inline]
+    fn traces_bsdf_rays(&self) -> bool {
+        self.emitters_reachable || self.probe.is_some()
+    }
+
     /// Records the sample `make` describes when a probe listens (built only then).
     #[inline]
     fn record(&self, make: impl FnOnce() -> ProbeSample) {

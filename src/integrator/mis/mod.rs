@@ -48,6 +48,8 @@ pub(super) fn estimate(ctx: &Context<'_>, mis: MisSettings, src: &mut impl Unifo
         let u = src.next_1d();
         return if u < c_light {
             light_sample(ctx, src, scale, 1.0 / c_light)
+        } else if !ctx.traces_bsdf_rays() {
+            Spectrum::ZERO // only delta lights: no BSDF-sampled ray can score
         } else {
             bsdf_sample(ctx, src, |pb, pl| scale(pl, pb), 1.0 / (1.0 - c_light))
         };
@@ -62,7 +64,14 @@ pub(super) fn estimate(ctx: &Context<'_>, mis: MisSettings, src: &mut impl Unifo
             1.0 / n,
         );
     }
-    for _ in 0..mis.bsdf_samples {
+    // With only delta lights no BSDF-sampled ray can reach an emitter: every BSDF sample
+    // is exactly zero (the sampler's later dimensions are not used by this estimate).
+    let bsdf_samples = if ctx.traces_bsdf_rays() {
+        mis.bsdf_samples
+    } else {
+        0
+    };
+    for _ in 0..bsdf_samples {
         sum += bsdf_sample(
             ctx,
             src,

@@ -165,6 +165,7 @@ mod tests {
             }
         }
         let bvh = BvhSelector::new(&lights);
-        assert_eq!(bvh.node_count(), 2 * 6 - 1);
+        // Six lights: a root of four lanes, two of them clusters of two (or one of three).
+        assert!((2..=3).contains(&bvh.node_count()), "{}", bvh.node_count());
     }
 }

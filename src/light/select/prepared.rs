@@ -19,19 +19,19 @@ use crate::math::safe_sqrt;
 #[derive(Clone, Copy, Debug)]
 pub struct PreparedBounds {
     /// Box centre.
-    centre: Vec3,
+    pub(super) centre: Vec3,
     /// Half the box's extent.
-    half: Vec3,
+    pub(super) half: Vec3,
     /// Squared radius of the box's bounding sphere.
-    radius2: f32,
+    pub(super) radius2: f32,
     /// Lower bound of the squared distance (a tenth of half the diagonal, squared).
-    d2_floor: f32,
-    phi: f32,
-    w: Vec3,
-    cos_theta_o: f32,
-    sin_theta_o: f32,
-    cos_theta_e: f32,
-    two_sided: bool,
+    pub(super) d2_floor: f32,
+    pub(super) phi: f32,
+    pub(super) w: Vec3,
+    pub(super) cos_theta_o: f32,
+    pub(super) sin_theta_o: f32,
+    pub(super) cos_theta_e: f32,
+    pub(super) two_sided: bool,
 }
 
 impl PreparedBounds {

@@ -4,7 +4,7 @@
 
 use glam::Vec3;
 
-use super::{Node, Trail};
+use super::Node;
 use crate::geometry::Aabb;
 use crate::light::LightBounds;
 use crate::math::PI;
@@ -13,7 +13,7 @@ use crate::math::PI;
 const BUCKETS: usize = 12;
 
 /// Below this depth the SAOH chooses splits; deeper ranges are halved by count, so the
-/// depth stays under 64 (the bit trails' width) for any light count up to 2³¹.
+/// depth stays under 64 (the selector's path buffer) for any light count up to 2³¹.
 const SAOH_MAX_DEPTH: u32 = 32;
 
 /// A light entering the build: its index in the scene, bounds and centroid.
@@ -24,22 +24,17 @@ pub(super) struct BuildLight {
     pub centroid: Vec3,
 }
 
-/// The tree under construction.
+/// The binary tree under construction (collapsed into 4-wide nodes afterwards).
 pub(super) struct Builder {
     pub nodes: Vec<Node>,
-    pub trails: Vec<Trail>,
 }
 
 impl Builder {
     /// Builds the subtree of `lights` (non-empty), placing its root at the next node
     /// index and its first child right after it; returns the subtree's bounds.
-    pub fn build(&mut self, lights: &mut [BuildLight], trail: u64, depth: u32) -> LightBounds {
+    pub fn build(&mut self, lights: &mut [BuildLight], depth: u32) -> LightBounds {
         if lights.len() == 1 {
             let l = lights[0];
-            self.trails[l.index] = Trail {
-                bits: trail,
-                depth: depth as u8,
-            };
             self.nodes.push(Node {
                 bounds: l.bounds,
                 second_or_light: l.index as u32,
@@ -55,9 +50,9 @@ impl Builder {
             leaf: false,
         });
         let (left, right) = lights.split_at_mut(mid);
-        let a = self.build(left, trail, depth + 1);
+        let a = self.build(left, depth + 1);
         let second = self.nodes.len() as u32;
-        let b = self.build(right, trail | (1u64 << depth), depth + 1);
+        let b = self.build(right, depth + 1);
         self.nodes[at].bounds = a.union(&b);
         self.nodes[at].second_or_light = second;
         self.nodes[at].bounds

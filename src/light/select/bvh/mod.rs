@@ -1,21 +1,29 @@
 //! Light BVH selection (Conty Estevez & Kulla 2018, "Importance Sampling of Many Lights
 //! with Adaptive Tree Splitting"; the design of pbrt-v4's `BVHLightSampler`, §12.6.3):
-//! a binary tree over the lights whose nodes carry [`LightBounds`]. Selection walks from
-//! the root, choosing each child with probability proportional to its importance at the
-//! shading point and reusing the one random number; the pmf is the product of the
-//! choices. `pmf` re-walks the same path, found from the light's bit trail, and so
-//! returns exactly the probability `select` used. O(depth) = O(log n) for both.
+//! a tree over the lights whose nodes carry [`LightBounds`]. The SAOH builds it binary;
+//! it is then collapsed to 4-wide nodes ([`wide`]), whose four importances are computed
+//! in one SIMD pass. Selection walks from the root, choosing each child with probability
+//! proportional to its importance at the shading point and reusing the one random number;
+//! the pmf is the product of the choices. `pmf` re-walks the same path, found from the
+//! light's slot and the nodes' parents, and so returns exactly the probability `select`
+//! used. O(depth) = O(log n) for both.
+//!
+//! On `mesh_ply_serialized` (256 emitting triangles) the binary tree's descent was a third
+//! of the render; the 4-wide one descends half as many levels with one importance pass
+//! per level (BENCHMARKS.md, session 8).
 
 mod build;
+mod wide;
 
 use build::{BuildLight, Builder};
+use wide::{LANES, NOT_IN_TREE, Slot, WideNode, collapse};
 
 use super::{LightSelector, PreparedBounds, Selection};
 use crate::light::{Light, LightBounds, ShadingPoint};
 use crate::sampling::sampler::ONE_MINUS_EPSILON;
 
-/// A node: its bounds and either its second child (the first follows it in the array)
-/// or, in a leaf, the light.
+/// A node of the binary tree the SAOH builds: its bounds and either its second child
+/// (the first follows it in the array) or, in a leaf, the light.
 #[derive(Clone, Copy, Debug)]
 struct Node {
     bounds: LightBounds,
@@ -23,24 +31,23 @@ struct Node {
     leaf: bool,
 }
 
-/// The path from the root to a light's leaf: bit k is the child (0 first, 1 second)
-/// taken at depth k.
-#[derive(Clone, Copy, Debug, Default)]
-struct Trail {
-    bits: u64,
-    depth: u8,
-}
-
-/// Marks a light outside the tree (it emits nothing and is never chosen).
-const NOT_IN_TREE: u8 = u8::MAX;
+/// Deepest path the selector walks (the binary build keeps its depth under 64, and the
+/// collapsed tree is no deeper).
+const MAX_DEPTH: usize = 64;
 
 /// The light BVH selector.
 #[derive(Clone, Debug)]
 pub struct BvhSelector {
-    nodes: Vec<Node>,
-    /// The nodes' bounds prepared for `importance` (same order).
-    prepared: Vec<PreparedBounds>,
-    trails: Vec<Trail>,
+    /// The 4-wide nodes, root first; empty when the tree holds fewer than two lights.
+    nodes: Vec<WideNode>,
+    /// Each node's slot in its parent (the root's is unused).
+    parent: Vec<Slot>,
+    /// Each light's slot ([`NOT_IN_TREE`] for lights outside the tree).
+    leaf_of: Vec<Slot>,
+    /// The one light of a one-light tree, with its prepared bounds.
+    single: Option<(usize, PreparedBounds)>,
+    /// Depth of the deepest leaf.
+    depth: usize,
     /// Lights at infinity (environments), outside the tree: chosen with probability
     /// n_inf / (n_inf + 1) — the tree counts as one more choice — as pbrt-v4 does.
     infinite: Vec<usize>,
@@ -65,147 +72,146 @@ impl BvhSelector {
             .collect();
         let mut builder = Builder {
             nodes: Vec::with_capacity(2 * items.len()),
-            trails: vec![
-                Trail {
-                    bits: 0,
-                    depth: NOT_IN_TREE,
-                };
-                lights.len()
-            ],
         };
         if !items.is_empty() {
-            builder.build(&mut items, 0, 0);
+            builder.build(&mut items, 0);
         }
-        BvhSelector {
-            prepared: builder
-                .nodes
-                .iter()
-                .map(|n| PreparedBounds::new(&n.bounds))
-                .collect(),
-            nodes: builder.nodes,
-            trails: builder.trails,
-            infinite: lights
-                .iter()
-                .enumerate()
-                .filter(|(_, l)| l.is_infinite())
-                .map(|(i, _)| i)
-                .collect(),
+        let prepared: Vec<PreparedBounds> = builder
+            .nodes
+            .iter()
+            .map(|n| PreparedBounds::new(&n.bounds))
+            .collect();
+        let infinite = lights
+            .iter()
+            .enumerate()
+            .filter(|(_, l)| l.is_infinite())
+            .map(|(i, _)| i)
+            .collect();
+        let mut selector = BvhSelector {
+            nodes: Vec::new(),
+            parent: Vec::new(),
+            leaf_of: vec![NOT_IN_TREE; lights.len()],
+            single: None,
+            depth: 0,
+            infinite,
+        };
+        match builder.nodes.first() {
+            None => {}
+            Some(root) if root.leaf => {
+                selector.single = Some((root.second_or_light as usize, prepared[0]));
+            }
+            Some(_) => {
+                let tree = collapse(&builder.nodes, &prepared, lights.len());
+                selector.nodes = tree.nodes;
+                selector.parent = tree.parent;
+                selector.leaf_of = tree.leaf_of;
+                selector.depth = tree.depth;
+            }
         }
+        selector
     }
 
-    /// Number of nodes (2n − 1 for n lights in the tree).
+    /// Number of (4-wide) nodes.
     pub fn node_count(&self) -> usize {
         self.nodes.len()
     }
 
-    /// Depth of the deepest leaf.
+    /// Depth of the deepest leaf (levels of 4-wide nodes).
     pub fn depth(&self) -> usize {
-        self.trails
-            .iter()
-            .filter(|t| t.depth != NOT_IN_TREE)
-            .map(|t| t.depth as usize)
-            .max()
-            .unwrap_or(0)
+        self.depth
     }
 
-    /// Importance of node `i` at `at` (of its bounds). Using a leaf light's contribution
-    /// estimate instead (as the adaptive selector) measured no gain on shirley-100
-    /// (relMSE 0.01278 vs 0.01285 at 49 spp), so every node uses its bounds.
-    #[inline]
-    fn importance(&self, i: usize, at: &ShadingPoint) -> f32 {
-        self.prepared[i].importance(at)
-    }
-
-    /// The two children of interior node `i` and their importances at `at`; both
-    /// importances zero means a dead end.
-    #[inline]
-    fn children(&self, i: usize, at: &ShadingPoint) -> ([usize; 2], [f32; 2]) {
-        let c = [i + 1, self.nodes[i].second_or_light as usize];
-        (c, [self.importance(c[0], at), self.importance(c[1], at)])
+    /// True when the tree holds at least one light.
+    fn has_tree(&self) -> bool {
+        self.single.is_some() || !self.nodes.is_empty()
     }
 }
 
-/// Neither child can contribute (or their sum is not a usable number).
+/// The sum of a node's importances when some child can contribute (a usable number).
 #[inline]
-fn dead_end(importance: [f32; 2]) -> bool {
-    let total = importance[0] + importance[1];
-    total <= 0.0 || !total.is_finite()
-}
-
-/// Probability of taking child `k` given both importances (the one expression `select`
-/// and `pmf` share, so both multiply the same numbers).
-#[inline]
-fn child_probability(importance: [f32; 2], k: usize) -> f32 {
-    importance[k] / (importance[0] + importance[1])
+fn usable_total(importance: &[f32; LANES]) -> Option<f32> {
+    let total = (importance[0] + importance[1]) + (importance[2] + importance[3]);
+    (total > 0.0 && total.is_finite()).then_some(total)
 }
 
 impl BvhSelector {
     /// Probability of choosing one given light at infinity, and of entering the tree.
     #[inline]
     fn split(&self) -> (f32, f32) {
-        let tree = !self.nodes.is_empty() as usize;
+        let tree = self.has_tree() as usize;
         let choices = (self.infinite.len() + tree) as f32;
         (1.0 / choices, tree as f32 / choices)
     }
 
     fn tree_select(&self, at: &ShadingPoint, u: f32) -> Option<Selection> {
-        let root = self.nodes.first()?;
-        if root.leaf {
+        let mut u = u.clamp(0.0, ONE_MINUS_EPSILON);
+        if let Some((light, bounds)) = &self.single {
             // One light: take it if it can contribute at all.
-            return (self.prepared[0].importance(at) > 0.0).then_some(Selection {
-                index: root.second_or_light as usize,
+            return (bounds.importance(at) > 0.0).then_some(Selection {
+                index: *light,
                 pmf: 1.0,
-                u_reused: u.clamp(0.0, ONE_MINUS_EPSILON),
+                u_reused: u,
             });
         }
-        let mut u = u.clamp(0.0, ONE_MINUS_EPSILON);
         let mut pmf = 1.0f32;
-        let mut i = 0;
-        while !self.nodes[i].leaf {
-            let (child, importance) = self.children(i, at);
-            if dead_end(importance) {
-                return None;
+        let mut node = self.nodes.first()?;
+        loop {
+            let importance = node.importance(at);
+            let total = usable_total(&importance)?;
+            // The lane whose interval of the CDF holds u (the last usable lane if
+            // rounding leaves u past every interval).
+            let mut chosen = (0, 0.0f32, 0.0f32);
+            let mut below = 0.0f32;
+            for (lane, &imp) in importance.iter().enumerate() {
+                let p = imp / total;
+                if p > 0.0 {
+                    chosen = (lane, below, p);
+                    if u < below + p {
+                        break;
+                    }
+                    below += p;
+                }
             }
-            let p0 = child_probability(importance, 0);
-            let k = if u < p0 {
-                u /= p0;
-                0
-            } else {
-                u = (u - p0) / (1.0 - p0);
-                1
-            };
-            u = u.clamp(0.0, ONE_MINUS_EPSILON);
-            pmf *= child_probability(importance, k);
-            i = child[k];
+            let (lane, below, p) = chosen;
+            u = ((u - below) / p).clamp(0.0, ONE_MINUS_EPSILON);
+            pmf *= p;
+            if node.leaf[lane] {
+                return Some(Selection {
+                    index: node.child[lane] as usize,
+                    pmf,
+                    u_reused: u,
+                });
+            }
+            node = &self.nodes[node.child[lane] as usize];
         }
-        Some(Selection {
-            index: self.nodes[i].second_or_light as usize,
-            pmf,
-            u_reused: u,
-        })
     }
 
     fn tree_pmf(&self, at: &ShadingPoint, index: usize) -> f32 {
-        let Some(trail) = self.trails.get(index).filter(|t| t.depth != NOT_IN_TREE) else {
-            return 0.0;
-        };
-        if self.nodes[0].leaf {
-            return if self.prepared[0].importance(at) > 0.0 {
+        if let Some((light, bounds)) = &self.single {
+            return if *light == index && bounds.importance(at) > 0.0 {
                 1.0
             } else {
                 0.0
             };
         }
+        let Some(&leaf) = self.leaf_of.get(index).filter(|s| **s != NOT_IN_TREE) else {
+            return 0.0;
+        };
+        // The path from the leaf up, then the choices multiplied root first, in the
+        // order `tree_select` multiplied them.
+        let mut path = [leaf; MAX_DEPTH];
+        let mut len = 1;
+        while path[len - 1].node != 0 && len < MAX_DEPTH {
+            path[len] = self.parent[path[len - 1].node as usize];
+            len += 1;
+        }
         let mut pmf = 1.0f32;
-        let mut i = 0;
-        for depth in 0..trail.depth {
-            let (child, importance) = self.children(i, at);
-            if dead_end(importance) {
+        for slot in path[..len].iter().rev() {
+            let importance = self.nodes[slot.node as usize].importance(at);
+            let Some(total) = usable_total(&importance) else {
                 return 0.0;
-            }
-            let k = ((trail.bits >> depth) & 1) as usize;
-            pmf *= child_probability(importance, k);
-            i = child[k];
+            };
+            pmf *= importance[slot.lane as usize] / total;
         }
         pmf
     }
