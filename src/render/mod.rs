@@ -94,7 +94,14 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
     let (first, last) = settings.pass.sample_range(settings.spp);
     let (first, last) = (first + settings.first_sample, last + settings.first_sample);
     let mut film = Film::new(w, h);
-    let tiles = tiles(w, h);
+    // Splatted tiles merge in tile order, so their size is part of the image's rounding:
+    // it stays fixed. Pixel-box tiles only split the work (each pixel keeps its own
+    // statistics): small images get smaller ones, so the threads stay balanced.
+    let tiles = if settings.filter.is_pixel_box() && w.div_ceil(TILE) * h.div_ceil(TILE) < 64 {
+        tiles(w, h, TILE / 2)
+    } else {
+        tiles(w, h, TILE)
+    };
     let invalid = AtomicU64::new(0);
     let start = Instant::now();
     let rounds = round_boundaries(first, last);
@@ -316,12 +323,12 @@ const MAX_FOOTPRINT: usize = 33;
 /// A rectangle of pixels (x0, y0, x1, y1), half-open.
 type Tile = (u32, u32, u32, u32);
 
-/// Tiles (x0, y0, x1, y1) covering the image, row by row.
-fn tiles(w: u32, h: u32) -> Vec<Tile> {
+/// Tiles (x0, y0, x1, y1) of `size` pixels covering the image, row by row.
+fn tiles(w: u32, h: u32, size: u32) -> Vec<Tile> {
     let mut t = Vec::new();
-    for y in (0..h).step_by(TILE as usize) {
-        for x in (0..w).step_by(TILE as usize) {
-            t.push((x, y, (x + TILE).min(w), (y + TILE).min(h)));
+    for y in (0..h).step_by(size as usize) {
+        for x in (0..w).step_by(size as usize) {
+            t.push((x, y, (x + size).min(w), (y + size).min(h)));
         }
     }
     t
