@@ -132,6 +132,16 @@ impl Light {
         }
     }
 
+    /// [`Light::infinite_radiance`] and [`Light::infinite_pdf`] together (one lookup of
+    /// the direction in an environment map).
+    #[inline]
+    pub fn infinite_radiance_pdf(&self, w: Vec3, strategy: LightStrategy) -> (Spectrum, f32) {
+        match self {
+            Light::Environment(e) => e.eval_pdf(w, strategy.env_compensation),
+            _ => (Spectrum::ZERO, 0.0),
+        }
+    }
+
     /// True for lights at infinity (no point to aim a shadow segment at).
     #[inline]
     pub fn is_infinite(&self) -> bool {

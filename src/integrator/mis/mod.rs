@@ -262,11 +262,11 @@ fn emitter_along(ctx: &Context<'_>, ray: &Ray, delta: bool) -> Option<Reached> {
         }
         Some(_) => None,
         None => scene.environment.map(|index| {
-            let light = &scene.lights[index];
+            let (le, pdf_light) = scene.lights[index].infinite_radiance_pdf(ray.d, ctx.lights);
             Reached {
                 index,
-                le: light.infinite_radiance(ray.d),
-                pdf_light: light.infinite_pdf(ray.d, ctx.lights),
+                le,
+                pdf_light,
                 point: None,
             }
         }),
