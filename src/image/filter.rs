@@ -80,8 +80,8 @@ impl Filter {
     #[inline]
     pub fn footprint(&self, p: f32, size: u32) -> (i64, i64) {
         let r = self.radius();
-        let lo = (p - 0.5 - r).ceil() as i64;
-        let hi = (p - 0.5 + r).floor() as i64;
+        let lo = crate::math::ceil(p - 0.5 - r) as i64;
+        let hi = crate::math::floor(p - 0.5 + r) as i64;
         (lo.max(0), hi.min(size as i64 - 1))
     }
 }

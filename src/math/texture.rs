@@ -67,11 +67,11 @@ impl Texture {
         }
         let p = uv * Vec2::new(self.width as f32, self.height as f32);
         if !self.bilinear {
-            return self.texel(p.x.floor() as i64, p.y.floor() as i64);
+            return self.texel(super::floor(p.x) as i64, super::floor(p.y) as i64);
         }
         // Texel centres sit at i + ½: interpolate between the four around p − ½.
         let q = p - 0.5;
-        let (x0, y0) = (q.x.floor(), q.y.floor());
+        let (x0, y0) = (super::floor(q.x), super::floor(q.y));
         let (fx, fy) = (q.x - x0, q.y - y0);
         let (x0, y0) = (x0 as i64, y0 as i64);
         let top = self.texel(x0, y0) * (1.0 - fx) + self.texel(x0 + 1, y0) * fx;

@@ -20,7 +20,7 @@ pub use sky::{SkyParameters, procedural_sky};
 use glam::{Mat3, Vec2, Vec3};
 
 use crate::math::atan::atan2;
-use crate::math::{PI, Spectrum, spectrum::luminance};
+use crate::math::{PI, Spectrum, floor, spectrum::luminance};
 use crate::sampling::distribution::PiecewiseConstant2D;
 use crate::sampling::sampler::ONE_MINUS_EPSILON;
 use crate::sampling::warp::{square_to_uniform_sphere, uniform_sphere_pdf};
@@ -78,7 +78,7 @@ fn direction_to_uv(w: Vec3) -> Vec2 {
     let u = atan2(w.x, -w.z) * (0.5 / PI);
     // θ by atan2 stays accurate at the poles, where acos(y) loses every digit.
     let v = atan2((w.x * w.x + w.z * w.z).sqrt(), w.y) / PI;
-    Vec2::new(u - u.floor(), v.min(ONE_MINUS_EPSILON))
+    Vec2::new(u - floor(u), v.min(ONE_MINUS_EPSILON))
 }
 
 impl LatLongImage {
@@ -146,9 +146,9 @@ impl LatLongImage {
     pub fn lookup(&self, uv: Vec2) -> Spectrum {
         let x = uv.x * self.width as f32 - 0.5;
         let y = (uv.y * (self.height - 1) as f32).clamp(0.0, (self.height - 1) as f32);
-        let x0 = x.floor();
+        let x0 = floor(x);
         let i = (x0 as isize).rem_euclid(self.width as isize) as usize;
-        let j = (y.floor() as usize).min(self.height - 2);
+        let j = (floor(y) as usize).min(self.height - 2);
         let (fx, fy) = (x - x0, y - j as f32);
         let top = self.texel(i, j) * (1.0 - fx) + self.texel(i + 1, j) * fx;
         let bottom = self.texel(i, j + 1) * (1.0 - fx) + self.texel(i + 1, j + 1) * fx;
@@ -256,7 +256,7 @@ impl Environment {
             Radiance::Map { image, .. } => {
                 let (cell, pdf_uv) = self.distribution(compensate)?.sample(u);
                 let x = cell.x + image.half_texel();
-                let uv = Vec2::new(x - x.floor(), cell.y);
+                let uv = Vec2::new(x - floor(x), cell.y);
                 let (local, sin_t) = uv_to_direction(uv);
                 if sin_t <= 0.0 || pdf_uv <= 0.0 {
                     return None;
@@ -290,7 +290,7 @@ impl Environment {
                     return (radiance, 0.0);
                 }
                 let x = uv.x - image.half_texel();
-                let cell = Vec2::new(x - x.floor(), uv.y);
+                let cell = Vec2::new(x - floor(x), uv.y);
                 (radiance, distribution.pdf(cell) / (2.0 * PI * PI * sin_t))
             }
         }
@@ -313,7 +313,7 @@ impl Environment {
                 }
                 let uv = direction_to_uv(local);
                 let x = uv.x - image.half_texel();
-                let cell = Vec2::new(x - x.floor(), uv.y);
+                let cell = Vec2::new(x - floor(x), uv.y);
                 distribution.pdf(cell) / (2.0 * PI * PI * sin_t)
             }
         }
