@@ -86,16 +86,24 @@ fn split(lights: &mut [BuildLight], depth: u32) -> usize {
                 None => l.bounds,
             });
         }
+        // The bounds below and above every candidate split by one sweep each way, not
+        // by merging the buckets again for each of the BUCKETS − 1 candidates (that was
+        // O(BUCKETS²) unions per node, most of the build on 10⁵ lights).
+        let mut below = [None::<LightBounds>; BUCKETS + 1];
+        let mut above = [None::<LightBounds>; BUCKETS + 1];
+        for k in 0..BUCKETS {
+            below[k + 1] = union(below[k], buckets[k]);
+            above[BUCKETS - 1 - k] = union(buckets[BUCKETS - 1 - k], above[BUCKETS - k]);
+        }
+        let total: usize = counts.iter().sum();
+        let mut n_below = 0;
         for s in 1..BUCKETS {
-            let below = merge(&buckets[..s]);
-            let above = merge(&buckets[s..]);
-            let (n_below, n_above): (usize, usize) =
-                (counts[..s].iter().sum(), counts[s..].iter().sum());
-            if n_below == 0 || n_above == 0 {
+            n_below += counts[s - 1];
+            if n_below == 0 || n_below == total {
                 continue;
             }
-            let cost = below.map_or(0.0, |b| cost(&b, &bounds, axis))
-                + above.map_or(0.0, |b| cost(&b, &bounds, axis));
+            let cost = below[s].map_or(0.0, |b| cost(&b, &bounds, axis))
+                + above[s].map_or(0.0, |b| cost(&b, &bounds, axis));
             if cost.is_finite() && best.is_none_or(|(c, _, _)| cost < c) {
                 best = Some((cost, axis, s));
             }
@@ -124,14 +132,13 @@ fn bucket(x: f32, lo: f32, hi: f32) -> usize {
     (((x - lo) / (hi - lo) * BUCKETS as f32) as usize).min(BUCKETS - 1)
 }
 
-/// The union of the non-empty buckets.
-fn merge(buckets: &[Option<LightBounds>]) -> Option<LightBounds> {
-    buckets.iter().flatten().fold(None, |acc, b| {
-        Some(match acc {
-            Some(a) => a.union(b),
-            None => *b,
-        })
-    })
+/// The union of two optional clusters.
+fn union(a: Option<LightBounds>, b: Option<LightBounds>) -> Option<LightBounds> {
+    match (a, b) {
+        (Some(a), Some(b)) => Some(a.union(&b)),
+        (a, None) => a,
+        (None, b) => b,
+    }
 }
 
 /// SAOH cost of one side: φ · M_Ω · K_r · surface area, where M_Ω is the solid-angle
