@@ -24,6 +24,11 @@ pub(super) struct BuildLight {
     pub centroid: Vec3,
 }
 
+/// Light counts from which the two halves of a split are built on two threads (each into
+/// its own array, appended afterwards with its inner nodes' indices shifted): the tree is
+/// the same node for node as the sequential build's.
+const PARALLEL_MIN_LIGHTS: usize = 4096;
+
 /// The binary tree under construction (collapsed into 4-wide nodes afterwards).
 pub(super) struct Builder {
     pub nodes: Vec<Node>,
@@ -33,30 +38,69 @@ impl Builder {
     /// Builds the subtree of `lights` (non-empty), placing its root at the next node
     /// index and its first child right after it; returns the subtree's bounds.
     pub fn build(&mut self, lights: &mut [BuildLight], depth: u32) -> LightBounds {
-        if lights.len() == 1 {
-            let l = lights[0];
-            self.nodes.push(Node {
-                bounds: l.bounds,
-                second_or_light: l.index as u32,
-                leaf: true,
-            });
-            return l.bounds;
-        }
-        let mid = split(lights, depth);
-        let at = self.nodes.len();
-        self.nodes.push(Node {
-            bounds: lights[0].bounds,
-            second_or_light: 0,
-            leaf: false,
-        });
-        let (left, right) = lights.split_at_mut(mid);
-        let a = self.build(left, depth + 1);
-        let second = self.nodes.len() as u32;
-        let b = self.build(right, depth + 1);
-        self.nodes[at].bounds = a.union(&b);
-        self.nodes[at].second_or_light = second;
-        self.nodes[at].bounds
+        build_into(&mut self.nodes, lights, depth, PARALLEL_MIN_LIGHTS)
     }
+}
+
+/// [`Builder::build`] into `nodes`, splitting the work over threads from `parallel_min`
+/// lights up.
+fn build_into(
+    nodes: &mut Vec<Node>,
+    lights: &mut [BuildLight],
+    depth: u32,
+    parallel_min: usize,
+) -> LightBounds {
+    if lights.len() == 1 {
+        let l = lights[0];
+        nodes.push(Node {
+            bounds: l.bounds,
+            second_or_light: l.index as u32,
+            leaf: true,
+        });
+        return l.bounds;
+    }
+    let parallel = lights.len() >= parallel_min;
+    let mid = split(lights, depth);
+    let at = nodes.len();
+    nodes.push(Node {
+        bounds: lights[0].bounds,
+        second_or_light: 0,
+        leaf: false,
+    });
+    let (left, right) = lights.split_at_mut(mid);
+    let (a, second, b) = if parallel {
+        let subtree = |part: &mut [BuildLight]| {
+            let mut sub = Vec::with_capacity(2 * part.len());
+            let bounds = build_into(&mut sub, part, depth + 1, parallel_min);
+            (sub, bounds)
+        };
+        let ((first_nodes, a), (second_nodes, b)) =
+            rayon::join(|| subtree(left), || subtree(right));
+        append_shifted(nodes, first_nodes);
+        let second = nodes.len() as u32;
+        append_shifted(nodes, second_nodes);
+        (a, second, b)
+    } else {
+        let a = build_into(nodes, left, depth + 1, parallel_min);
+        let second = nodes.len() as u32;
+        let b = build_into(nodes, right, depth + 1, parallel_min);
+        (a, second, b)
+    };
+    nodes[at].bounds = a.union(&b);
+    nodes[at].second_or_light = second;
+    nodes[at].bounds
+}
+
+/// Appends a subtree built in its own array: its inner nodes name their second child by
+/// index in that array, so they move by where it starts now.
+fn append_shifted(nodes: &mut Vec<Node>, subtree: Vec<Node>) {
+    let offset = nodes.len() as u32;
+    nodes.extend(subtree.into_iter().map(|mut n| {
+        if !n.leaf {
+            n.second_or_light += offset;
+        }
+        n
+    }));
 }
 
 /// Partitions `lights` (≥ 2) and returns the index where the second part starts
@@ -166,4 +210,55 @@ fn cost(b: &LightBounds, parent: &Aabb, axis: usize) -> f32 {
     // A point light's box has no area: give it a tiny one so its power still counts.
     let area = b.aabb.surface_area().max(1e-12);
     b.phi * m_omega * k_r * area
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_parallel_build_is_the_sequential_tree_node_for_node() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 40) as f32 / (1u64 << 24) as f32
+        };
+        let lights: Vec<BuildLight> = (0..3000)
+            .map(|index| {
+                let lo = Vec3::new(next(), next(), next()) * 20.0;
+                let bounds = LightBounds {
+                    aabb: Aabb {
+                        min: lo,
+                        max: lo + Vec3::new(next(), next(), next()) * 0.3,
+                    },
+                    phi: 0.1 + next() * 5.0,
+                    w: Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5).normalize_or(Vec3::Y),
+                    cos_theta_o: next(),
+                    cos_theta_e: 0.0,
+                    two_sided: index % 3 == 0,
+                };
+                BuildLight {
+                    index,
+                    bounds,
+                    centroid: bounds.aabb.centroid(),
+                }
+            })
+            .collect();
+        let build = |parallel_min: usize| {
+            let mut nodes = Vec::new();
+            build_into(&mut nodes, &mut lights.clone(), 0, parallel_min);
+            nodes
+        };
+        let (sequential, parallel) = (build(usize::MAX), build(64));
+        assert_eq!(sequential.len(), 2 * lights.len() - 1);
+        assert_eq!(sequential.len(), parallel.len());
+        for (k, (s, p)) in sequential.iter().zip(&parallel).enumerate() {
+            assert!(
+                s.bounds == p.bounds && s.second_or_light == p.second_or_light && s.leaf == p.leaf,
+                "node {k}: {s:?} vs {p:?}"
+            );
+        }
+    }
 }
