@@ -282,18 +282,26 @@ impl Environment {
                 let local = self.to_local * w;
                 let uv = direction_to_uv(local);
                 let radiance = image.lookup(uv) * self.scale;
-                let Some(distribution) = self.distribution(compensate) else {
-                    return (radiance, 0.0);
-                };
-                let sin_t = (local.x * local.x + local.z * local.z).sqrt();
-                if sin_t <= 0.0 {
-                    return (radiance, 0.0);
-                }
-                let x = uv.x - image.half_texel();
-                let cell = Vec2::new(x - floor(x), uv.y);
-                (radiance, distribution.pdf(cell) / (2.0 * PI * PI * sin_t))
+                (radiance, self.map_pdf(image, local, uv, compensate))
             }
         }
+    }
+
+    /// The map's solid-angle density of the direction `local` (emitter frame) whose image
+    /// coordinates are `uv`: the cell's density over the lat-long Jacobian 2π² sin θ.
+    #[inline]
+    fn map_pdf(&self, image: &LatLongImage, local: Vec3, uv: Vec2, compensate: bool) -> f32 {
+        let Some(distribution) = self.distribution(compensate) else {
+            return 0.0;
+        };
+        // sin θ from the horizontal components: accurate near the poles.
+        let sin_t = (local.x * local.x + local.z * local.z).sqrt();
+        if sin_t <= 0.0 {
+            return 0.0;
+        }
+        let x = uv.x - image.half_texel();
+        let cell = Vec2::new(x - floor(x), uv.y);
+        distribution.pdf(cell) / (2.0 * PI * PI * sin_t)
     }
 
     /// Solid-angle density of [`Environment::sample`] choosing world direction `w`.
@@ -302,19 +310,8 @@ impl Environment {
         match &self.radiance {
             Radiance::Constant(_) => uniform_sphere_pdf(w),
             Radiance::Map { image, .. } => {
-                let Some(distribution) = self.distribution(compensate) else {
-                    return 0.0;
-                };
                 let local = self.to_local * w;
-                // sin θ from the horizontal components: accurate near the poles.
-                let sin_t = (local.x * local.x + local.z * local.z).sqrt();
-                if sin_t <= 0.0 {
-                    return 0.0;
-                }
-                let uv = direction_to_uv(local);
-                let x = uv.x - image.half_texel();
-                let cell = Vec2::new(x - floor(x), uv.y);
-                distribution.pdf(cell) / (2.0 * PI * PI * sin_t)
+                self.map_pdf(image, local, direction_to_uv(local), compensate)
             }
         }
     }

@@ -31,10 +31,6 @@ struct Node {
     leaf: bool,
 }
 
-/// Deepest path the selector walks (the binary build keeps its depth under 64, and the
-/// collapsed tree is no deeper).
-const MAX_DEPTH: usize = 64;
-
 /// The light BVH selector.
 #[derive(Clone, Debug)]
 pub struct BvhSelector {
@@ -197,23 +193,22 @@ impl BvhSelector {
         let Some(&leaf) = self.leaf_of.get(index).filter(|s| **s != NOT_IN_TREE) else {
             return 0.0;
         };
-        // The path from the leaf up, then the choices multiplied root first, in the
-        // order `tree_select` multiplied them.
-        let mut path = [leaf; MAX_DEPTH];
-        let mut len = 1;
-        while path[len - 1].node != 0 && len < MAX_DEPTH {
-            path[len] = self.parent[path[len - 1].node as usize];
-            len += 1;
-        }
-        let mut pmf = 1.0f32;
-        for slot in path[..len].iter().rev() {
-            let importance = self.nodes[slot.node as usize].importance(at);
-            let Some(total) = usable_total(&importance) else {
-                return 0.0;
-            };
-            pmf *= importance[slot.lane as usize] / total;
-        }
-        pmf
+        self.path_pmf(at, leaf)
+    }
+
+    /// The probability of taking `slot` from the root: the parents' choices multiplied
+    /// root first, in the order `tree_select` multiplied them (a dead end anywhere gives 0).
+    fn path_pmf(&self, at: &ShadingPoint, slot: Slot) -> f32 {
+        let importance = self.nodes[slot.node as usize].importance(at);
+        let Some(total) = usable_total(&importance) else {
+            return 0.0;
+        };
+        let above = if slot.node == 0 {
+            1.0
+        } else {
+            self.path_pmf(at, self.parent[slot.node as usize])
+        };
+        above * (importance[slot.lane as usize] / total)
     }
 }
 
