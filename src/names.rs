@@ -58,6 +58,10 @@ pub mod flag {
     pub const LIGHT_SELECT: &str = "light-select";
     /// `--ris-candidates`.
     pub const RIS_CANDIDATES: &str = "ris-candidates";
+    /// `--ris-spatial`.
+    pub const RIS_SPATIAL: &str = "ris-spatial";
+    /// `--ris-radius`.
+    pub const RIS_RADIUS: &str = "ris-radius";
     /// `--sampler`.
     pub const SAMPLER: &str = "sampler";
     /// `--spp`.

@@ -9,11 +9,13 @@ mod light;
 pub mod mis;
 pub mod probe;
 mod ris;
+mod spatial;
 
 pub use crate::settings::{DEFAULT_RIS_CANDIDATES, MAX_RIS_CANDIDATES};
 
 pub use mis::{MisHeuristic, MisSettings, OptimalPixel, TechniqueMoments};
 pub use probe::{Probe, ProbeSample};
+pub use spatial::{Reuse, SpatialReservoir, SpatialSurface};
 
 use std::cell::RefCell;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -183,12 +185,7 @@ impl Estimator {
         }
         let flipped;
         let hit = if w_out.dot(hit.ng) < 0.0 && scene.is_two_sided(hit.material) {
-            // Mitsuba's `twosided`: the back face is shaded like the front one.
-            flipped = SurfaceHit {
-                ng: -hit.ng,
-                frame: Frame::from_normal(-hit.frame.n),
-                ..*hit
-            };
+            flipped = flip(hit);
             &flipped
         } else {
             hit
@@ -203,24 +200,54 @@ impl Estimator {
             n: hit.frame.n,
         };
         let ctx = Context {
-            scene,
-            selector: &self.selector,
-            lights: self.lights,
-            at: &at,
-            hit,
-            material,
-            w_out: w_out_local,
-            ris: self.ris,
-            shadow_rays: &self.shadow_rays,
             probe,
             optimal,
-            emitters_reachable: self.emitters_reachable,
+            ..self.context(scene, &at, hit, material, w_out_local)
         };
         match self.kind {
             EstimatorKind::Light => light::estimate(&ctx, src),
             EstimatorKind::Mis => mis::estimate(&ctx, self.mis, src),
             kind => directional::estimate(&ctx, kind, src),
         }
+    }
+}
+
+impl Estimator {
+    /// The context of one estimate at `hit` (no probe, no optimal-MIS state).
+    #[inline(always)]
+    fn context<'a>(
+        &'a self,
+        scene: &'a Scene,
+        at: &'a ShadingPoint,
+        hit: &'a SurfaceHit,
+        material: &'a Material,
+        w_out: Vec3,
+    ) -> Context<'a> {
+        Context {
+            scene,
+            selector: &self.selector,
+            lights: self.lights,
+            at,
+            hit,
+            material,
+            w_out,
+            ris: self.ris,
+            shadow_rays: &self.shadow_rays,
+            probe: None,
+            optimal: None,
+            emitters_reachable: self.emitters_reachable,
+        }
+    }
+}
+
+/// `hit` with its normals flipped: Mitsuba's `twosided` shades the back face of a
+/// two-sided material like the front one.
+#[inline(always)]
+fn flip(hit: &SurfaceHit) -> SurfaceHit {
+    SurfaceHit {
+        ng: -hit.ng,
+        frame: Frame::from_normal(-hit.frame.n),
+        ..*hit
     }
 }
 

@@ -20,8 +20,8 @@ use glam::Vec3;
 use super::light::light_record;
 use super::probe::no_direction;
 use super::{Context, f_cos};
-use crate::light::LightSample;
 use crate::light::select::LightSelector;
+use crate::light::{LightSample, ShadingPoint};
 use crate::math::{Spectrum, spectrum::luminance};
 use crate::sampling::Uniform;
 
@@ -48,11 +48,15 @@ pub(super) struct Resampled {
 /// Draws `candidates` light samples from the context's selector and lights, and keeps one
 /// ∝ luminance(f·cos·Le)/p (a streaming weighted reservoir whose single random number is
 /// rescaled at every step, as the lecture reuses one number for two choices). `None`
-/// when no candidate carries light.
+/// when no candidate carries light. With `horizons`, candidates below the geometric or
+/// the shading normal's horizon are skipped (the target of spatial reuse, which must be
+/// zero wherever a pixel's own candidates cannot land; see [`super::spatial`]).
+#[inline(always)]
 pub(super) fn resample(
     ctx: &Context<'_>,
     src: &mut impl Uniform,
     candidates: u32,
+    horizons: bool,
 ) -> Option<Resampled> {
     let m = candidates.clamp(1, MAX_RIS_CANDIDATES);
     let mut reservoir = Reservoir::new(src.next_1d());
@@ -66,6 +70,9 @@ pub(super) fn resample(
         let Some(ls) = ctx.scene.lights[sel.index].sample(ctx.at, u_point, ctx.lights) else {
             continue;
         };
+        if horizons && !above_horizons(ctx.at, ls.w_in) {
+            continue;
+        }
         let w_in = ctx.hit.frame.to_local(ls.w_in);
         let f = f_cos(ctx.material, w_in, ctx.w_out);
         let p_source = sel.pmf * ls.pdf;
@@ -90,16 +97,24 @@ pub(super) fn resample(
     (r.weight > 0.0 && r.weight.is_finite()).then_some(r)
 }
 
+/// Whether `w` (world, towards the light) is above both the geometric and the shading
+/// horizon of `at`.
+#[inline]
+pub(super) fn above_horizons(at: &ShadingPoint, w: Vec3) -> bool {
+    at.ng.dot(w) > 0.0 && at.n.dot(w) > 0.0
+}
+
 /// A streaming weighted reservoir of size one driven by a single uniform number: after
 /// offers w_1 … w_k, the kept offer is j with probability w_j / Σ w. The number is
 /// rescaled after each decision so it stays uniform for the next one.
-struct Reservoir {
+pub(super) struct Reservoir {
     u: f64,
-    w_sum: f64,
+    /// Σ of the weights offered so far.
+    pub w_sum: f64,
 }
 
 impl Reservoir {
-    fn new(u: f32) -> Reservoir {
+    pub fn new(u: f32) -> Reservoir {
         Reservoir {
             u: u as f64,
             w_sum: 0.0,
@@ -108,7 +123,7 @@ impl Reservoir {
 
     /// Offers a candidate of weight `w` > 0; true when it replaces the kept one (with
     /// probability w / Σw so far).
-    fn offer(&mut self, w: f64) -> bool {
+    pub fn offer(&mut self, w: f64) -> bool {
         self.w_sum += w;
         let p = w / self.w_sum;
         let keep = self.u < p;
@@ -124,7 +139,7 @@ impl Reservoir {
 
 /// One sample of the light estimator with resampling: f·cos·Le·V·W.
 pub(super) fn estimate(ctx: &Context<'_>, src: &mut impl Uniform, candidates: u32) -> Spectrum {
-    let Some(r) = resample(ctx, src, candidates) else {
+    let Some(r) = resample(ctx, src, candidates, false) else {
         ctx.record(|| no_direction("ris"));
         return Spectrum::ZERO;
     };

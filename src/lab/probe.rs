@@ -53,6 +53,13 @@ pub fn probe(
     settings: &RenderSettings,
     pixel: (u32, u32),
 ) -> Result<ProbeReport, LabError> {
+    if settings.ris_spatial > 0 {
+        return Err(LabError::Input(
+            "--ris-spatial reuses neighbouring pixels' reservoirs, which a probe of one \
+             shading point does not have: probe without it"
+                .into(),
+        ));
+    }
     let camera = settings.camera(scene);
     let (x, y) = pixel;
     if x >= camera.width || y >= camera.height {

@@ -2,6 +2,7 @@
 //! rounds of samples so a stop request still leaves a whole image, and a progress bar.
 
 mod settings;
+mod spatial;
 
 pub use crate::settings::{Pass, SampleBlock};
 pub use settings::RenderSettings;
@@ -142,7 +143,16 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
                 (p, Spectrum::ZERO)
             }
         };
-        if settings.filter.is_pixel_box() {
+        if settings.ris_spatial > 0 {
+            let job = spatial::Job {
+                scene,
+                settings,
+                camera: &camera,
+                estimator: &estimator,
+                invalid: &invalid,
+            };
+            spatial::round(&mut film, &tiles, s0..s1, &job);
+        } else if settings.filter.is_pixel_box() {
             round_pixel_box(&mut film, &tiles, s0..s1, settings.seed, &sample);
         } else {
             round_splatted(

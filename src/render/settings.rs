@@ -5,8 +5,9 @@ use crate::image::Filter;
 use crate::light::{check_sampling, sampling_summary};
 use crate::scene::{Camera, Scene};
 use crate::settings::{
-    DEFAULT_RIS_CANDIDATES, EstimatorKind, LightSampling, LightSelect, LightStrategy, MAX_PIXELS,
-    MisHeuristic, MisSettings, Pass, RenderPatch, SamplerKind, SettingsError, Switch,
+    DEFAULT_RIS_CANDIDATES, DEFAULT_RIS_RADIUS, EstimatorKind, LightSampling, LightSelect,
+    LightStrategy, MAX_PIXELS, MisHeuristic, MisSettings, Pass, RenderPatch, SamplerKind,
+    SettingsError, Switch,
 };
 
 /// A complete description of how to render a scene.
@@ -22,6 +23,10 @@ pub struct RenderSettings {
     pub light_select: LightSelect,
     /// Candidates per light sample when `light_select` is `ris`.
     pub ris_candidates: u32,
+    /// Neighbouring pixels whose reservoirs each `ris` light sample reuses (0: none).
+    pub ris_spatial: u32,
+    /// Radius in pixels of the disk those neighbours come from.
+    pub ris_radius: u32,
     /// Random number source.
     pub sampler: SamplerKind,
     /// Samples per pixel (of the whole render, over all passes).
@@ -76,6 +81,8 @@ impl RenderSettings {
             light_sampling: p.light_sampling.unwrap_or(LightSampling::Best),
             light_select: p.light_select.unwrap_or(LightSelect::Bvh),
             ris_candidates: p.ris_candidates.unwrap_or(DEFAULT_RIS_CANDIDATES),
+            ris_spatial: p.ris_spatial.unwrap_or(0),
+            ris_radius: p.ris_radius.unwrap_or(DEFAULT_RIS_RADIUS),
             sampler: p.sampler.unwrap_or(SamplerKind::Sobol),
             spp: p.spp.unwrap_or(scene.spp),
             seed: p.seed.unwrap_or(0),
@@ -102,6 +109,13 @@ impl RenderSettings {
                  sample has no density for the control variate)"
                     .into(),
             ));
+        }
+        if s.ris_spatial > 0 && (s.light_select != LightSelect::Ris || !s.samples_lights()) {
+            return Err(SettingsError::Conflict(format!(
+                "--ris-spatial reuses the reservoirs of --light-select ris under --estimator \
+                 light or mis, not --light-select {} --estimator {}",
+                s.light_select, s.estimator
+            )));
         }
         if s.samples_lights() {
             check_sampling(&scene.lights, s.light_sampling)
@@ -168,6 +182,8 @@ impl RenderSettings {
             light_sampling: Some(self.light_sampling),
             light_select: Some(self.light_select),
             ris_candidates: (self.light_select == LightSelect::Ris).then_some(self.ris_candidates),
+            ris_spatial: (self.ris_spatial > 0).then_some(self.ris_spatial),
+            ris_radius: (self.ris_spatial > 0).then_some(self.ris_radius),
             sampler: Some(self.sampler),
             spp: Some(self.spp),
             seed: Some(self.seed),
@@ -229,6 +245,19 @@ mod tests {
                 .to_string()
         };
         assert!(bad("--envmap-compensation --estimator light").contains("--estimator mis"));
+        let e = bad("--ris-spatial 4");
+        assert!(e.contains("--ris-spatial") && e.contains("bvh"), "{e}");
+        let e = bad("--ris-spatial 4 --light-select ris --estimator cosine");
+        assert!(e.contains("cosine"), "{e}");
+        let range = |text: &str| text.parse::<RenderPatch>().unwrap_err().to_string();
+        assert!(range("--ris-spatial 33").contains("0..=32"));
+        assert!(range("--ris-radius 0").contains("1..=256"));
+        let spatial: RenderPatch = "--light-select ris --ris-spatial 4 --ris-radius 6"
+            .parse()
+            .unwrap();
+        let s = RenderSettings::build(&scene, &[&spatial]).unwrap();
+        assert_eq!((s.ris_spatial, s.ris_radius), (4, 6));
+        assert_eq!(RenderSettings::build(&scene, &[&s.patch()]).unwrap(), s);
         assert!(bad("--width 32768 --height 32768").contains("--width 32768 --height 32768"));
         // No silent fallback: the assignment's light is a rectangle (issue 18).
         for s in ["geometric", "visible-area"] {

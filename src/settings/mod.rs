@@ -126,6 +126,12 @@ named_enum! {
 pub const DEFAULT_RIS_CANDIDATES: u32 = 2;
 /// The most candidates `--light-select ris` draws per light sample.
 pub const MAX_RIS_CANDIDATES: u32 = 64;
+/// The most neighbouring pixels `--ris-spatial K` reuses reservoirs from.
+pub const MAX_RIS_SPATIAL: u32 = 32;
+/// Radius in pixels of the disk `--ris-spatial` picks neighbours in when none is given.
+pub const DEFAULT_RIS_RADIUS: u32 = 10;
+/// The largest `--ris-radius`.
+pub const MAX_RIS_RADIUS: u32 = 256;
 
 named_enum! {
     /// Which sampler a render uses; parsed from and shown as its CLI name.

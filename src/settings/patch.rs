@@ -8,8 +8,8 @@ use std::fmt;
 use std::str::FromStr;
 
 use super::{
-    EstimatorKind, LightSampling, LightSelect, MAX_RIS_CANDIDATES, MisHeuristic, Pass, SamplerKind,
-    Switch,
+    EstimatorKind, LightSampling, LightSelect, MAX_RIS_CANDIDATES, MAX_RIS_RADIUS, MAX_RIS_SPATIAL,
+    MisHeuristic, Pass, SamplerKind, Switch,
 };
 use crate::names::flag;
 
@@ -131,6 +131,10 @@ render_patch! {
     light_select: LightSelect = flag::LIGHT_SELECT,
     /// Candidates per light sample of `--light-select ris` (1 to 64).
     ris_candidates: u32 = flag::RIS_CANDIDATES,
+    /// Spatial reuse of `--light-select ris` reservoirs: K neighbouring pixels per sample (0 = off, up to 32; Bitterli et al. 2020 with unbiased 1/Z weights).
+    ris_spatial: u32 = flag::RIS_SPATIAL,
+    /// Radius in pixels of the disk `--ris-spatial` draws its neighbours from (1 to 256, default 10).
+    ris_radius: u32 = flag::RIS_RADIUS,
     /// Sampler: independent, stratified, sobol.
     sampler: SamplerKind = flag::SAMPLER,
     /// Samples per pixel (default: the scene's).
@@ -185,6 +189,8 @@ impl RenderPatch {
                 1,
                 MAX_RIS_CANDIDATES,
             ),
+            (flag::RIS_SPATIAL, self.ris_spatial, 0, MAX_RIS_SPATIAL),
+            (flag::RIS_RADIUS, self.ris_radius, 1, MAX_RIS_RADIUS),
             (flag::SPP, self.spp, 1, u32::MAX),
             (flag::WIDTH, self.width, 1, MAX_SIDE),
             (flag::HEIGHT, self.height, 1, MAX_SIDE),

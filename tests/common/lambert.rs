@@ -42,13 +42,27 @@ pub const RECTANGLE_RADIANCE: f32 = 2.0;
 pub fn floor_under_rectangle(
     floor: lightlab::bsdf::Material,
 ) -> (lightlab::scene::Scene, [Vec3; 4]) {
-    use lightlab::math::Spectrum;
     use lightlab::scene::Camera;
     use lightlab::scene::SceneBuilder;
-    use lightlab::scene::builder::Emission;
 
     let mut b = SceneBuilder::new("floor-under-rectangle");
     let m = b.material(floor);
+    let corners = add_floor_under_rectangle(&mut b, m, RECTANGLE_RADIANCE);
+    let camera = Camera::look_at(Vec3::new(0.0, 3.0, 0.1), Vec3::ZERO, Vec3::Y, 40.0, 8, 8);
+    let scene = b.build(camera, 1).expect("scene");
+    (scene, corners)
+}
+
+/// Adds the floor and the rectangle light of [`floor_under_rectangle`] (material `m`, the
+/// light's radiance `radiance`) to `b`; returns the light's corners.
+pub fn add_floor_under_rectangle(
+    b: &mut lightlab::scene::SceneBuilder,
+    m: u32,
+    radiance: f32,
+) -> [Vec3; 4] {
+    use lightlab::math::Spectrum;
+    use lightlab::scene::builder::Emission;
+
     b.rectangle(
         Vec3::new(-0.5, 0.0, 0.5),
         Vec3::new(1.0, 0.0, 0.0),
@@ -61,9 +75,6 @@ pub fn floor_under_rectangle(
         Vec3::new(0.0, 0.0, 1.2),
         Vec3::new(0.0, 1.4, 0.0),
     );
-    let emitter = Some(Emission::new(Spectrum::splat(RECTANGLE_RADIANCE)));
-    b.rectangle(o, ea, eb, m, emitter);
-    let camera = Camera::look_at(Vec3::new(0.0, 3.0, 0.1), Vec3::ZERO, Vec3::Y, 40.0, 8, 8);
-    let scene = b.build(camera, 1).expect("scene");
-    (scene, [o, o + ea, o + ea + eb, o + eb])
+    b.rectangle(o, ea, eb, m, Some(Emission::new(Spectrum::splat(radiance))));
+    [o, o + ea, o + ea + eb, o + eb]
 }

@@ -33,13 +33,55 @@ pub use crate::settings::MisSettings;
 
 /// One estimate of the `mis` estimator.
 pub(super) fn estimate(ctx: &Context<'_>, mis: MisSettings, src: &mut impl Uniform) -> Spectrum {
-    let (n, m) = (mis.light_samples as f32, mis.bsdf_samples as f32);
     // Resampled light samples carry no density for the control variate: there optimal
     // weights reduce to their α = 0, the balance heuristic (renders refuse the pair). A
     // probe has no pixel state either (α = 0), and the balance path records its samples.
     if mis.heuristic == MisHeuristic::Optimal && ctx.ris.is_none() && ctx.probe.is_none() {
         return optimal_estimate(ctx, mis, src);
     }
+    estimate_with(ctx, mis, src, &mut Drawn)
+}
+
+/// How the MIS estimator gets its light samples: drawn here ([`Drawn`]), or combined
+/// from reservoirs filled earlier (spatial reuse, [`super::spatial`]).
+pub(super) trait LightTechnique {
+    /// One light sample: `scale(p_light, p_bsdf)` is the factor that multiplies f·cos·Le
+    /// (the MIS weight over the density); `delta_scale` multiplies f·cos·Le/pmf for delta
+    /// lights.
+    fn sample(
+        &mut self,
+        ctx: &Context<'_>,
+        src: &mut impl Uniform,
+        scale: impl Fn(f32, f32) -> f32,
+        delta_scale: f32,
+    ) -> Spectrum;
+}
+
+/// Light samples drawn at the shading point (RIS when the context asks for it).
+struct Drawn;
+
+impl LightTechnique for Drawn {
+    #[inline(always)]
+    fn sample(
+        &mut self,
+        ctx: &Context<'_>,
+        src: &mut impl Uniform,
+        scale: impl Fn(f32, f32) -> f32,
+        delta_scale: f32,
+    ) -> Spectrum {
+        light_sample(ctx, src, scale, delta_scale)
+    }
+}
+
+/// The balance, power and one-sample estimates with light samples from `light`.
+#[inline]
+pub(super) fn estimate_with(
+    ctx: &Context<'_>,
+    mis: MisSettings,
+    src: &mut impl Uniform,
+    light: &mut impl LightTechnique,
+) -> Spectrum {
+    let (n, m) = (mis.light_samples as f32, mis.bsdf_samples as f32);
     if mis.heuristic == MisHeuristic::OneSample {
         let c_light = n / (n + m);
         // f / Σ_k c_k p_k: the balance heuristic over the choice probability.
@@ -47,7 +89,7 @@ pub(super) fn estimate(ctx: &Context<'_>, mis: MisSettings, src: &mut impl Unifo
             |p_light: f32, p_bsdf: f32| 1.0 / (c_light * p_light + (1.0 - c_light) * p_bsdf);
         let u = src.next_1d();
         return if u < c_light {
-            light_sample(ctx, src, scale, 1.0 / c_light)
+            light.sample(ctx, src, scale, 1.0 / c_light)
         } else if !ctx.traces_bsdf_rays() {
             Spectrum::ZERO // only delta lights: no BSDF-sampled ray can score
         } else {
@@ -57,7 +99,7 @@ pub(super) fn estimate(ctx: &Context<'_>, mis: MisSettings, src: &mut impl Unifo
     let h = mis.heuristic;
     let mut sum = Spectrum::ZERO;
     for _ in 0..mis.light_samples {
-        sum += light_sample(
+        sum += light.sample(
             ctx,
             src,
             |pl, pb| mis_weight(h, n * pl, m * pb) / (n * pl),
@@ -148,7 +190,7 @@ fn resampled_light_sample(
     scale: impl Fn(f32, f32) -> f32,
     delta_scale: f32,
 ) -> Spectrum {
-    let Some(r) = super::ris::resample(ctx, src, m) else {
+    let Some(r) = super::ris::resample(ctx, src, m, false) else {
         ctx.record(|| no_direction("ris"));
         return Spectrum::ZERO;
     };

@@ -245,7 +245,7 @@ pub const FIGURES: &[Figure] = &[
     },
     Figure {
         name: "ris",
-        description: "light BVH vs resampled importance sampling (Talbot 2005) from 2, 4 and 8 BVH candidates, light estimator at equal spp",
+        description: "light BVH vs resampled importance sampling (Talbot 2005) from 2, 4 and 8 BVH candidates, and from 2 with the reservoirs of 4 neighbouring pixels reused (Bitterli et al. 2020, pairwise MIS), light estimator at equal spp",
         kind: FigureKind::Panels(&[
             ris_panel("shirley-100", "builtin:shirley-100"),
             ris_panel("many-lights-1000", "builtin:many-lights?n=1000"),
@@ -318,6 +318,11 @@ const fn ris_panel(title: &'static str, scene: &'static str) -> Panel {
             (
                 "ris M=8",
                 "--estimator light --light-select ris --ris-candidates 8",
+            ),
+            (
+                "ris M=2, spatial K=4",
+                "--estimator light --light-select ris --ris-candidates 2 --ris-spatial 4 \
+                 --ris-radius 5",
             ),
         ],
         spp: 16,
