@@ -120,12 +120,22 @@ fn images_are_bitwise_identical_for_any_thread_count() {
 #[test]
 fn fast_paths_agree_with_the_reference_implementations() {
     // `--fast-paths off` samples the rectangle light with the readable f64 spherical
-    // rectangle; on (the default) with the fast one. Independent seeds: the blocks must
-    // agree within noise for the light and MIS estimators.
-    let scene = builtin::build("assignment").expect("scene");
+    // rectangle, and an emitting mesh's triangles with the f64 spherical triangle; on (the
+    // default) with the fast ones. Independent seeds: the blocks must agree within noise
+    // for the light and MIS estimators.
+    for name in [
+        "builtin:assignment",
+        "builtin:sphere-near-plane?emitters=mesh",
+    ] {
+        let scene = lightlab::scene::load(name).expect("scene");
+        fast_paths_agree_on(&scene, name);
+    }
+}
+
+fn fast_paths_agree_on(scene: &lightlab::scene::Scene, name: &str) {
     for estimator in [EstimatorKind::Light, EstimatorKind::Mis] {
         let film = |fast: bool, seed: u64| {
-            render_small(&scene, 2048, seed, |s| {
+            render_small(scene, 2048, seed, |s| {
                 s.estimator = estimator;
                 s.light_sampling = LightSampling::SolidAngle;
                 s.fast_paths = fast;
@@ -133,7 +143,10 @@ fn fast_paths_agree_with_the_reference_implementations() {
         };
         let (fast, reference) = (blocks(&film(true, 21)), blocks(&film(false, 22)));
         let worst = worst(&block_z(&fast, &reference));
-        println!("{estimator}: worst block z = {worst:+.2}");
-        assert!(worst.abs() < 4.0, "{estimator}: worst block z = {worst}");
+        println!("{name} {estimator}: worst block z = {worst:+.2}");
+        assert!(
+            worst.abs() < 4.0,
+            "{name} {estimator}: worst block z = {worst}"
+        );
     }
 }

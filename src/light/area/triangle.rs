@@ -6,7 +6,9 @@
 //! [`MIN_SOLID_ANGLE`](crate::sampling::warp::MIN_SOLID_ANGLE) (far or edge-on: the
 //! constructor returns `None`) or within [`MAX_SOLID_ANGLE_FRACTION`] of a hemisphere (the
 //! shading point almost on the triangle, where its vertices are nearly coplanar with it).
-//! The choice depends only on the shading point, so `sample` and `pdf` agree on it.
+//! The choice depends only on the shading point, so `sample` and `pdf` agree on it. With
+//! the render's fast paths on (the default), `solid-angle` uses the same map without libm
+//! trigonometry ([`FastSphericalTriangle`]), under the same fall-backs.
 //! `projected-solid-angle` draws ∝ cos θ over the part above the horizon (the
 //! `projected` module).
 
@@ -16,7 +18,7 @@ use super::{LightPoint, LightSampling, cosine_warp, hit_plane, projected, unifor
 use crate::geometry::shape::Triangle;
 use crate::light::ShadingPoint;
 use crate::math::PI;
-use crate::sampling::warp::{SphericalTriangle, square_to_triangle_fold};
+use crate::sampling::warp::{FastSphericalTriangle, SphericalTriangle, square_to_triangle_fold};
 
 /// Spherical triangles above this fraction of 2π are sampled by area instead.
 pub const MAX_SOLID_ANGLE_FRACTION: f32 = 0.999;
@@ -71,12 +73,22 @@ pub(super) fn sample_area(t: &Triangle, u: Vec2) -> (Vec3, Vec3) {
     (t.p0 + b.x * t.e1 + b.y * t.e2, t.normal())
 }
 
+/// The fast path's spherical triangle of `t` seen from `at`, under the same conditions as
+/// [`safe_spherical_triangle`].
+#[inline]
+fn fast_spherical(t: &Triangle, at: &ShadingPoint) -> Option<FastSphericalTriangle> {
+    let [p0, p1, p2] = t.vertices();
+    FastSphericalTriangle::new(at.p, p0, p1, p2)
+        .filter(|st| st.solid_angle() <= MAX_SOLID_ANGLE_FRACTION * 2.0 * PI)
+}
+
 /// Draws a point of `t` with `strategy` (resolved: `area`, `solid-angle` or
-/// `solid-angle-cos`).
+/// `solid-angle-cos`), `solid-angle` on the fast path when `fast`.
 #[inline]
 pub(super) fn sample(
     t: &Triangle,
     strategy: LightSampling,
+    fast: bool,
     at: &ShadingPoint,
     u: Vec2,
 ) -> Option<LightPoint> {
@@ -84,6 +96,19 @@ pub(super) fn sample(
         return projected::sample(t.vertices(), t.normal(), at, u);
     }
     let ny = t.normal();
+    if fast && strategy == LightSampling::SolidAngle {
+        if let Some(st) = fast_spherical(t, at) {
+            let (w, pdf) = st.sample(u);
+            let y = hit_plane(at.p, w, t.p0, ny)?;
+            return Some(LightPoint { y, ny, pdf });
+        }
+        let (y, ny) = sample_area(t, u);
+        return Some(LightPoint {
+            y,
+            ny,
+            pdf: uniform_area_pdf(at.p, y, ny, t.area()),
+        });
+    }
     match spherical(t, strategy, at) {
         Some((st, weights)) => {
             let (w, pdf) = cosine_warp::sample(&st, weights, u);
@@ -101,17 +126,25 @@ pub(super) fn sample(
     }
 }
 
-/// Density per steradian at `at` of the direction towards `y` on `t`.
+/// Density per steradian at `at` of the direction towards `y` on `t`, for `sample` with
+/// the same `strategy` and `fast`.
 #[inline]
 pub(super) fn pdf(
     t: &Triangle,
     strategy: LightSampling,
+    fast: bool,
     at: &ShadingPoint,
     y: Vec3,
     ny: Vec3,
 ) -> f32 {
     if strategy == LightSampling::ProjectedSolidAngle {
         return projected::pdf(t.vertices(), at, y);
+    }
+    if fast && strategy == LightSampling::SolidAngle {
+        return match fast_spherical(t, at) {
+            Some(st) => 1.0 / st.solid_angle(),
+            None => uniform_area_pdf(at.p, y, ny, t.area()),
+        };
     }
     match spherical(t, strategy, at) {
         Some((st, None)) => 1.0 / st.solid_angle(),

@@ -385,6 +385,22 @@ fn spherical_entries() -> Vec<Entry> {
             boxed(move |w| t.pdf(w)),
         );
         list.push(with_inverse(e, boxed(move |w| t.to_square(w))));
+        // The renderer's fast path of the same map (no libm trigonometry).
+        if let Some(f) = FastSphericalTriangle::new(from, v0, v1, v2) {
+            list.push(entry(
+                &format!("spherical-triangle-fast-{case}"),
+                &format!(
+                    "the renderer's fast path of spherical-triangle (no libm atan2, sin_cos), {case} view, {:.2e} sr",
+                    f.solid_angle()
+                ),
+                cap_around(from, &[v0, v1, v2]),
+                square(move |u| {
+                    let w = f.sample(u).0;
+                    (w, f.pdf(w))
+                }),
+                boxed(move |w| f.pdf(w)),
+            ));
+        }
         // A rectangle on the triangle's first two edges' plane: corner v0, edges along v1 − v0 and its perpendicular.
         let ex = v1 - v0;
         let ey = (v2 - v0) - (v2 - v0).dot(ex) / ex.length_squared() * ex;

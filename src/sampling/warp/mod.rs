@@ -22,6 +22,7 @@ pub mod spherical_disk;
 pub mod spherical_rectangle;
 pub mod spherical_rectangle_fast;
 pub mod spherical_triangle;
+pub mod spherical_triangle_fast;
 pub mod triangle;
 pub mod xi_squared;
 
@@ -38,5 +39,6 @@ pub use spherical_disk::*;
 pub use spherical_rectangle::*;
 pub use spherical_rectangle_fast::*;
 pub use spherical_triangle::*;
+pub use spherical_triangle_fast::*;
 pub use triangle::*;
 pub use xi_squared::*;

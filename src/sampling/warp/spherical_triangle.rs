@@ -84,32 +84,14 @@ impl SphericalTriangle {
         let (s, t) = (area - self.alpha).sin_cos();
         let p = t - cos_alpha;
         let q = s + sin_alpha * a.dot(b);
-        // cos of the arc from a to c′ (Arvo's eq. for q).
-        let cos_b = ((q * t - p * s) * cos_alpha - q) / ((q * s + p * t) * sin_alpha);
-        let cos_b = if cos_b.is_finite() {
-            cos_b.clamp(-1.0, 1.0)
-        } else {
-            1.0
-        };
-        let c_prime = cos_b * a + (1.0 - cos_b * cos_b).max(0.0).sqrt() * orthogonal_part(c, a);
-        // 1 − cos of the arc b–w is u₁ times that of b–c′; 1 − x·y = |x − y|²/2 for unit
-        // vectors keeps it exact for small triangles.
-        let one_minus_z = u.y as f64 * one_minus_dot(c_prime, b);
-        let sin_theta = (one_minus_z * (2.0 - one_minus_z)).max(0.0).sqrt();
-        let w = (1.0 - one_minus_z) * b + sin_theta * orthogonal_part(c_prime, b);
-        let w = w.normalize_or(b).as_vec3();
+        let w = arvo_direction([a, b, c], sin_alpha, cos_alpha, [p, q, s, t], u.y);
         (w, self.pdf(w))
     }
 
     /// Density of [`SphericalTriangle::sample`]: 1/Ω per sr for directions inside the
     /// triangle, else 0.
     pub fn pdf(&self, w: Vec3) -> f32 {
-        let (a, b, c, w) = (self.a, self.b, self.c, w.as_dvec3());
-        let orientation = a.dot(b.cross(c)).signum();
-        let inside = [a.cross(b), b.cross(c), c.cross(a)]
-            .iter()
-            .all(|n| orientation * n.dot(w) >= 0.0);
-        if inside {
+        if inside(self.a, self.b, self.c, w.as_dvec3()) {
             (1.0 / self.solid_angle) as f32
         } else {
             0.0
@@ -140,8 +122,44 @@ impl SphericalTriangle {
     }
 }
 
+/// The end of Arvo's map, shared with the fast path: from sin α, cos α and
+/// [p, q, s, t] (p = cos(u₀Ω − α) − cos α, q = sin(u₀Ω − α) + sin α (a·b), s, t = sin, cos
+/// of u₀Ω − α), the point c′ on the arc a–c that closes the sub-triangle of area u₀Ω,
+/// then the direction on the arc from b to c′ at u₁.
+pub(super) fn arvo_direction(
+    [a, b, c]: [DVec3; 3],
+    sin_alpha: f64,
+    cos_alpha: f64,
+    [p, q, s, t]: [f64; 4],
+    u1: f32,
+) -> Vec3 {
+    // cos of the arc from a to c′ (Arvo's eq. for q).
+    let cos_b = ((q * t - p * s) * cos_alpha - q) / ((q * s + p * t) * sin_alpha);
+    let cos_b = if cos_b.is_finite() {
+        cos_b.clamp(-1.0, 1.0)
+    } else {
+        1.0
+    };
+    let c_prime = cos_b * a + (1.0 - cos_b * cos_b).max(0.0).sqrt() * orthogonal_part(c, a);
+    // 1 − cos of the arc b–w is u₁ times that of b–c′; 1 − x·y = |x − y|²/2 for unit
+    // vectors keeps it exact for small triangles.
+    let one_minus_z = u1 as f64 * one_minus_dot(c_prime, b);
+    let sin_theta = (one_minus_z * (2.0 - one_minus_z)).max(0.0).sqrt();
+    let w = (1.0 - one_minus_z) * b + sin_theta * orthogonal_part(c_prime, b);
+    w.normalize_or(b).as_vec3()
+}
+
+/// Whether the direction `w` lies in the spherical triangle with unit vertices a, b, c
+/// (on the inner side of its three great circles, whatever the winding).
+pub(super) fn inside(a: DVec3, b: DVec3, c: DVec3, w: DVec3) -> bool {
+    let orientation = a.dot(b.cross(c)).signum();
+    [a.cross(b), b.cross(c), c.cross(a)]
+        .iter()
+        .all(|n| orientation * n.dot(w) >= 0.0)
+}
+
 /// 1 − x·y for unit vectors, as |x − y|²/2 (no cancellation when x ≈ y).
-fn one_minus_dot(x: DVec3, y: DVec3) -> f64 {
+pub(super) fn one_minus_dot(x: DVec3, y: DVec3) -> f64 {
     0.5 * (x - y).length_squared()
 }
 
