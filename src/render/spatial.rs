@@ -20,8 +20,8 @@ use crate::settings::MAX_RIS_SPATIAL;
 
 /// Neighbours whose shading normals differ by more than this angle's cosine (25°) or
 /// whose depth differs by more than [`MAX_DEPTH_RATIO`] are not reused: their samples
-/// rarely suit the pixel (Bitterli et al. 2020 §5.3). Choosing neighbours by their primary
-/// hits never biases the estimate, which is unbiased given every pixel's hit.
+/// rarely suit the pixel (the thresholds of Bitterli et al. 2020). Choosing neighbours by
+/// their primary hits never biases the estimate, which is unbiased given every pixel's hit.
 const MIN_NORMAL_COS: f32 = 0.906;
 /// Largest relative depth difference of a reused neighbour.
 const MAX_DEPTH_RATIO: f32 = 0.1;
@@ -53,8 +53,10 @@ pub(super) fn round(film: &mut Film, tiles: &[Tile], samples: Range<u32>, job: &
     let per_pixel = job.estimator.spatial_reservoirs();
     let mut reservoirs = vec![SpatialReservoir::default(); w * h * per_pixel];
     let mut results = vec![(Vec2::ZERO, Spectrum::ZERO); w * h];
+    // Every pixel's first pass, overwritten in place at each sample index.
+    let mut primaries: Vec<Option<Primary>> = (0..w * h).map(|_| None).collect();
     for s in samples {
-        let primaries = first_pass(job, s, (w, h), &mut reservoirs, per_pixel);
+        first_pass(job, s, w, &mut primaries, &mut reservoirs, per_pixel);
         results.par_chunks_mut(w).enumerate().for_each(|(y, row)| {
             for (x, out) in row.iter_mut().enumerate() {
                 *out = second_pass(job, &primaries, &reservoirs, per_pixel, (x, y), (w, h));
@@ -81,12 +83,12 @@ pub(super) fn round(film: &mut Film, tiles: &[Tile], samples: Range<u32>, job: &
 fn first_pass(
     job: &Job<'_>,
     s: u32,
-    (w, h): (usize, usize),
+    w: usize,
+    primaries: &mut [Option<Primary>],
     reservoirs: &mut [SpatialReservoir],
     per_pixel: usize,
-) -> Vec<Primary> {
+) {
     let settings = job.settings;
-    let mut primaries: Vec<Option<Primary>> = (0..w * h).map(|_| None).collect();
     primaries
         .par_chunks_mut(w)
         .zip(reservoirs.par_chunks_mut(w * per_pixel))
@@ -112,30 +114,31 @@ fn first_pass(
                 });
             }
         });
-    primaries
-        .into_iter()
-        .map(|p| p.expect("every pixel"))
-        .collect()
 }
 
 /// The sample of pixel `(x, y)`: its film position and radiance, its direct light
 /// combined from its reservoirs and those of up to K neighbours in a disk around it.
 fn second_pass(
     job: &Job<'_>,
-    primaries: &[Primary],
+    primaries: &[Option<Primary>],
     reservoirs: &[SpatialReservoir],
     per_pixel: usize,
     (x, y): (usize, usize),
     (w, h): (usize, usize),
 ) -> (Vec2, Spectrum) {
-    let i = y * w + x;
-    let primary = &primaries[i];
-    let Some(surface) = &primary.surface else {
-        return finite(job, primary.film, primary.emitted);
+    let primary = |j: usize| {
+        primaries[j]
+            .as_ref()
+            .expect("the first pass fills every pixel")
     };
-    let mut sampler = primary.sampler.clone();
+    let i = y * w + x;
+    let primary_i = primary(i);
+    let Some(surface) = &primary_i.surface else {
+        return finite(job, primary_i.film, primary_i.emitted);
+    };
+    let mut sampler = primary_i.sampler.clone();
     let reuse = |j: usize| Reuse {
-        surface: primaries[j].surface.as_ref().expect("a surface"),
+        surface: primary(j).surface.as_ref().expect("a surface"),
         reservoirs: &reservoirs[j * per_pixel..(j + 1) * per_pixel],
     };
     let own = reuse(i);
@@ -150,7 +153,7 @@ fn second_pass(
             continue;
         }
         let j = ny as usize * w + nx as usize;
-        let Some(other) = &primaries[j].surface else {
+        let Some(other) = &primary(j).surface else {
             continue;
         };
         let similar = other.normal().dot(surface.normal()) >= MIN_NORMAL_COS
@@ -163,7 +166,7 @@ fn second_pass(
     let direct = job
         .estimator
         .spatial_direct(job.scene, own, &neighbours[..count], &mut sampler);
-    finite(job, primary.film, primary.emitted + direct)
+    finite(job, primary_i.film, primary_i.emitted + direct)
 }
 
 /// The sample as the film takes it: non-finite radiance is counted and scored as zero.
