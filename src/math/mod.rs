@@ -4,6 +4,7 @@
 
 pub mod atan;
 pub mod elliptic;
+pub mod exp;
 pub mod frame;
 pub mod spectrum;
 pub mod texture;

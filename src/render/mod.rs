@@ -3,6 +3,7 @@
 
 mod settings;
 mod spatial;
+mod splat;
 
 pub use crate::settings::{Pass, SampleBlock};
 pub use settings::RenderSettings;
@@ -13,10 +14,10 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
-use glam::{DVec3, Vec2};
+use glam::Vec2;
 use rayon::prelude::*;
 
-use crate::image::{Film, Filter, PixelStats};
+use crate::image::{Film, PixelStats};
 use crate::integrator::{Estimator, EstimatorKind, MisHeuristic, OptimalPixel};
 use crate::math::Spectrum;
 use crate::sampling::{Sampler, Uniform};
@@ -155,7 +156,7 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
         } else if settings.filter.is_pixel_box() {
             round_pixel_box(&mut film, &tiles, s0..s1, settings.seed, &sample);
         } else {
-            round_splatted(
+            splat::round_splatted(
                 &mut film,
                 &tiles,
                 s0..s1,
@@ -226,109 +227,6 @@ fn round_pixel_box<F: Fn(u32, u32, u64, u32) -> (Vec2, Spectrum) + Sync>(
         }
     }
 }
-
-/// One round with a wider filter: each tile splats its samples into a buffer that
-/// covers the tile and the filter's reach, and the buffers are merged into the film in
-/// tile order (Chan's merge), so the image does not depend on the thread count.
-fn round_splatted<F: Fn(u32, u32, u64, u32) -> (Vec2, Spectrum) + Sync>(
-    film: &mut Film,
-    tiles: &[Tile],
-    samples: Range<u32>,
-    seed: u64,
-    filter: Filter,
-    sample: &F,
-) {
-    let (w, h) = (film.width, film.height);
-    let reach = filter.radius().ceil() as u32;
-    let results: Vec<(Tile, Vec<Splats>)> = tiles
-        .par_iter()
-        .map(|&(x0, y0, x1, y1)| {
-            let bx0 = x0.saturating_sub(reach);
-            let by0 = y0.saturating_sub(reach);
-            let (bx1, by1) = ((x1 + reach).min(w), (y1 + reach).min(h));
-            let bw = bx1 - bx0;
-            let mut buf = vec![Splats::default(); (bw * (by1 - by0)) as usize];
-            for y in y0..y1 {
-                for x in x0..x1 {
-                    let key = Sampler::pixel_key(seed, (y * w + x) as u64);
-                    for s in samples.clone() {
-                        let (p, l) = sample(x, y, key, s);
-                        let (xl, xh) = filter.footprint(p.x, w);
-                        let (yl, yh) = filter.footprint(p.y, h);
-                        // Separable weights, evaluated once per axis.
-                        let mut wx = [0.0f32; MAX_FOOTPRINT];
-                        for (k, px) in (xl..=xh).enumerate().take(MAX_FOOTPRINT) {
-                            wx[k] = filter.eval(px as f32 + 0.5 - p.x);
-                        }
-                        for py in yl..=yh {
-                            let wy = filter.eval(py as f32 + 0.5 - p.y);
-                            if wy <= 0.0 {
-                                continue;
-                            }
-                            let row = (py as u32 - by0) * bw;
-                            for (k, px) in (xl..=xh).enumerate().take(MAX_FOOTPRINT) {
-                                let wt = wy * wx[k];
-                                if wt > 0.0 {
-                                    buf[(row + px as u32 - bx0) as usize].add(l, wt);
-                                }
-                            }
-                        }
-                    }
-                }
-            }
-            ((bx0, by0, bx1, by1), buf)
-        })
-        .collect();
-    for ((bx0, by0, bx1, _), buf) in results {
-        for (i, splats) in buf.into_iter().enumerate() {
-            if splats.count == 0 {
-                continue;
-            }
-            let stats = splats.stats();
-            let (x, y) = (bx0 + i as u32 % (bx1 - bx0), by0 + i as u32 / (bx1 - bx0));
-            let px = &mut film.pixels[(y * w + x) as usize];
-            *px = px.merge(&stats);
-        }
-    }
-}
-
-/// Weighted sums of one pixel's splats within a tile and round, in f64 so the variance
-/// from sums (M2 = Σw·x² − (Σw·x)²/W) keeps its precision; cheaper per splat than a
-/// weighted Welford update, and turned into [`PixelStats`] once per round.
-#[derive(Clone, Copy, Default)]
-struct Splats {
-    count: u32,
-    w: f64,
-    w2: f64,
-    sum: DVec3,
-    sum2: DVec3,
-}
-
-impl Splats {
-    #[inline]
-    fn add(&mut self, x: Spectrum, w: f32) {
-        let (x, w) = (x.as_dvec3(), w as f64);
-        self.count += 1;
-        self.w += w;
-        self.w2 += w * w;
-        self.sum += w * x;
-        self.sum2 += w * x * x;
-    }
-
-    fn stats(&self) -> PixelStats {
-        let mean = self.sum / self.w;
-        PixelStats {
-            count: self.count,
-            mean: mean.as_vec3(),
-            m2: (self.sum2 - self.sum * mean).max(DVec3::ZERO).as_vec3(),
-            weight: self.w as f32,
-            weight2: self.w2 as f32,
-        }
-    }
-}
-
-/// Most pixels a filter reaches along one axis (radius ≤ 16, as `Filter::validate` checks).
-const MAX_FOOTPRINT: usize = 33;
 
 /// A rectangle of pixels (x0, y0, x1, y1), half-open.
 type Tile = (u32, u32, u32, u32);

@@ -9,7 +9,8 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use glam::Vec2;
 use rayon::prelude::*;
 
-use super::{RenderSettings, Tile, round_pixel_box, round_splatted};
+use super::splat::round_splatted;
+use super::{RenderSettings, Tile, round_pixel_box};
 use crate::image::Film;
 use crate::integrator::{Estimator, Reuse, SpatialReservoir, SpatialSurface};
 use crate::math::Spectrum;
