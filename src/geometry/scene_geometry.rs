@@ -28,19 +28,57 @@ pub struct Geometry {
     /// Meshes, for shading normals and texture coordinates of triangles.
     pub meshes: Vec<Mesh>,
     bvh: Bvh,
+    /// The emitting primitives behind a BVH of their own, for [`Geometry::emitter_hit`];
+    /// `None` where they are more than [`EMITTER_SHARE`] of all primitives.
+    emitters: Option<Emitters>,
 }
+
+/// The emitting primitives: their BVH, and for each of its leaf positions the primitive
+/// (an index into [`Geometry::primitives`]).
+#[derive(Clone, Debug)]
+struct Emitters {
+    bvh: Bvh,
+    prims: Vec<u32>,
+}
+
+/// Largest share of emitting primitives for which [`Geometry::emitter_hit`] tests the
+/// emitters first. A ray that meets an emitter then costs two traversals (the emitters',
+/// and an any-hit query of the scene up to it) instead of one, which pays only where
+/// most rays miss every emitter.
+const EMITTER_SHARE: f32 = 0.25;
 
 impl Geometry {
     /// Builds the BVH and stores primitives in its leaf order.
     pub fn new(prims: Vec<Primitive>, meshes: Vec<Mesh>) -> Geometry {
         let bounds: Vec<Aabb> = prims.iter().map(|p| p.shape.bounds()).collect();
         let bvh = Bvh::build(&bounds);
-        let prims = bvh
+        let prims: Vec<Primitive> = bvh
             .primitive_order()
             .iter()
             .map(|&i| prims[i as usize])
             .collect();
-        Geometry { prims, meshes, bvh }
+        let emitting: Vec<u32> = (0..prims.len() as u32)
+            .filter(|&i| prims[i as usize].light != NO_LIGHT)
+            .collect();
+        let emitters = (emitting.len() as f32 <= EMITTER_SHARE * prims.len() as f32).then(|| {
+            let bounds: Vec<Aabb> = emitting
+                .iter()
+                .map(|&i| prims[i as usize].shape.bounds())
+                .collect();
+            let bvh = Bvh::build(&bounds);
+            let prims = bvh
+                .primitive_order()
+                .iter()
+                .map(|&k| emitting[k as usize])
+                .collect();
+            Emitters { bvh, prims }
+        });
+        Geometry {
+            prims,
+            meshes,
+            bvh,
+            emitters,
+        }
     }
 
     /// The primitives, in BVH order (indices match [`SurfaceHit::prim`]).
@@ -70,6 +108,35 @@ impl Geometry {
             Some(hit.t)
         })?;
         self.surface_hit(prim, ray, &last?)
+    }
+
+    /// The closest hit of `ray` in (0, ∞) if it is on an emitter, else `None`: what
+    /// `intersect(ray, ∞)` gives, filtered to emitters, as a BSDF-sampled ray of direct
+    /// lighting needs it (without an environment, only an emitter's hit can score).
+    /// Where emitters are few, the emitters alone are intersected first: a ray that
+    /// misses them all needs no traversal of the scene, and one that meets an emitter at
+    /// distance t counts when nothing blocks (0, t) (every shape reports only hits below
+    /// its t_max, so the emitter does not block itself). A blocker at exactly the
+    /// emitter's distance, which the closest-hit query would order by traversal, here
+    /// leaves the emitter visible.
+    #[inline]
+    pub fn emitter_hit(&self, ray: &Ray) -> Option<SurfaceHit> {
+        let Some(emitters) = &self.emitters else {
+            return self
+                .intersect(ray, f32::INFINITY)
+                .filter(|y| y.light != NO_LIGHT);
+        };
+        let mut last = None;
+        let (k, t) = emitters.bvh.closest_hit(ray, f32::INFINITY, |k, r, t| {
+            let prim = emitters.prims[k as usize];
+            let hit = self.prims[prim as usize].shape.intersect(r, t)?;
+            last = Some(hit);
+            Some(hit.t)
+        })?;
+        if self.occluded(ray, t) {
+            return None;
+        }
+        self.surface_hit(emitters.prims[k as usize], ray, &last?)
     }
 
     /// True when something blocks `ray` in (0, t_max).
@@ -126,5 +193,90 @@ impl Geometry {
     /// True when primitive `prim` emits.
     pub fn is_emitter(&self, prim: u32) -> bool {
         self.prims[prim as usize].light != NO_LIGHT
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::shape::{Rectangle, Sphere};
+    use crate::sampling::rng::Rng32;
+
+    /// Spheres on a grid (every `emit_every`-th one emitting) above a floor, and a
+    /// rectangle light that a sphere half hides.
+    fn scene(emit_every: usize) -> Geometry {
+        let mut prims = Vec::new();
+        let mut light = 0;
+        for i in 0..40 {
+            let c = Vec3::new(
+                (i % 8) as f32 - 3.5,
+                0.5 + (i / 8) as f32 * 0.3,
+                (i / 8) as f32,
+            );
+            let emits = i % emit_every == 0;
+            prims.push(Primitive {
+                shape: Shape::Sphere(Sphere::new(c, 0.3 + 0.02 * (i % 5) as f32)),
+                material: 0,
+                light: if emits { light } else { NO_LIGHT },
+            });
+            light += emits as u32;
+        }
+        let floor = Rectangle::new(Vec3::new(-5.0, 0.0, -5.0), Vec3::X * 10.0, Vec3::Z * 10.0);
+        let panel = Rectangle::new(Vec3::new(-1.0, 2.0, 1.0), Vec3::X * 2.0, Vec3::Z * 2.0);
+        prims.push(Primitive {
+            shape: Shape::Rectangle(floor.expect("rectangle")),
+            material: 0,
+            light: NO_LIGHT,
+        });
+        prims.push(Primitive {
+            shape: Shape::Rectangle(panel.expect("rectangle")),
+            material: 0,
+            light,
+        });
+        Geometry::new(prims, Vec::new())
+    }
+
+    #[test]
+    fn emitter_hits_are_the_closest_hits_on_emitters() {
+        for (emit_every, emitters_first) in [(7, true), (2, false)] {
+            let g = scene(emit_every);
+            assert_eq!(g.emitters.is_some(), emitters_first);
+            let mut rng = Rng32::new(17);
+            let (mut seen, mut blocked) = (0, 0);
+            for _ in 0..20_000 {
+                let o = Vec3::new(
+                    rng.next_f32() * 10.0 - 5.0,
+                    rng.next_f32() * 3.0 + 0.01,
+                    rng.next_f32() * 6.0 - 1.0,
+                );
+                let d = Vec3::new(
+                    rng.next_f32() - 0.5,
+                    rng.next_f32() - 0.5,
+                    rng.next_f32() - 0.5,
+                );
+                let ray = Ray::new(o, d.normalize());
+                let expected = g
+                    .intersect(&ray, f32::INFINITY)
+                    .filter(|y| y.light != NO_LIGHT);
+                let got = g.emitter_hit(&ray);
+                assert_eq!(got.map(|y| (y.prim, y.t)), expected.map(|y| (y.prim, y.t)));
+                seen += got.is_some() as u32;
+                // Rays whose first emitter along them lies behind something else.
+                let first_emitter = g.emitters.as_ref().and_then(|e| {
+                    e.bvh.closest_hit(&ray, f32::INFINITY, |k, r, t| {
+                        g.prims[e.prims[k as usize] as usize]
+                            .shape
+                            .intersect(r, t)
+                            .map(|h| h.t)
+                    })
+                });
+                blocked += (first_emitter.is_some() && got.is_none()) as u32;
+            }
+            assert!(seen > 500, "{seen} emitter hits");
+            assert!(
+                !emitters_first || blocked > 100,
+                "{blocked} hidden emitters"
+            );
+        }
     }
 }

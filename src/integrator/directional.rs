@@ -62,7 +62,14 @@ pub(super) fn estimate(ctx: &Context<'_>, kind: EstimatorKind, src: &mut impl Un
         (Spectrum::ZERO, None, None)
     } else {
         let ray = Ray::new(offset_origin(hit.p, hit.ng, w_world), w_world);
-        match scene.geometry.intersect(&ray, f32::INFINITY) {
+        // Without an environment only an emitter's hit can score (see
+        // `Geometry::emitter_hit`).
+        let hit = if scene.environment.is_some() {
+            scene.geometry.intersect(&ray, f32::INFINITY)
+        } else {
+            scene.geometry.emitter_hit(&ray)
+        };
+        match hit {
             Some(y) => (
                 weight * emitted_at(scene, &y, -w_world),
                 (y.light != NO_LIGHT).then_some(y.light as usize),

@@ -287,7 +287,13 @@ struct Reached {
 #[inline]
 fn emitter_along(ctx: &Context<'_>, ray: &Ray, delta: bool) -> Option<Reached> {
     let scene = ctx.scene;
-    match scene.geometry.intersect(ray, f32::INFINITY) {
+    let hit = if scene.environment.is_some() {
+        scene.geometry.intersect(ray, f32::INFINITY)
+    } else {
+        // Only an emitter's hit can score: the geometry finds it emitters first.
+        scene.geometry.emitter_hit(ray)
+    };
+    match hit {
         Some(y) if y.light != NO_LIGHT => {
             let index = y.light as usize;
             let pdf_light = if delta {
