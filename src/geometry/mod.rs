@@ -15,5 +15,5 @@ pub use bvh::{Bvh, TriangleSet};
 pub use hit::{NO_LIGHT, SurfaceHit};
 pub use mesh::Mesh;
 pub use ray::{Ray, offset_origin};
-pub use scene_geometry::{Geometry, Primitive};
+pub use scene_geometry::{Along, Geometry, Primitive};
 pub use shape::Shape;

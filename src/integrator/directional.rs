@@ -4,7 +4,7 @@
 use super::probe::{ProbeSample, no_direction};
 use super::{Context, EstimatorKind, emitted_at, f_cos};
 use crate::bsdf::Bsdf;
-use crate::geometry::{NO_LIGHT, Ray, offset_origin};
+use crate::geometry::{Along, Ray, offset_origin};
 use crate::math::Spectrum;
 use crate::sampling::Uniform;
 use crate::sampling::warp::{
@@ -62,20 +62,17 @@ pub(super) fn estimate(ctx: &Context<'_>, kind: EstimatorKind, src: &mut impl Un
         (Spectrum::ZERO, None, None)
     } else {
         let ray = Ray::new(offset_origin(hit.p, hit.ng, w_world), w_world);
-        // Without an environment only an emitter's hit can score (see
-        // `Geometry::emitter_hit`).
-        let hit = if scene.environment.is_some() {
-            scene.geometry.intersect(&ray, f32::INFINITY)
-        } else {
-            scene.geometry.emitter_hit(&ray)
-        };
-        match hit {
-            Some(y) => (
+        match scene
+            .geometry
+            .first_emitter(&ray, scene.environment.is_some())
+        {
+            Along::Emitter(y) => (
                 weight * emitted_at(scene, &y, -w_world),
-                (y.light != NO_LIGHT).then_some(y.light as usize),
+                Some(y.light as usize),
                 Some(y.p),
             ),
-            None => (weight * scene.escaped(w_world), scene.environment, None),
+            Along::Escapes => (weight * scene.escaped(w_world), scene.environment, None),
+            Along::Blocked => (Spectrum::ZERO, None, None),
         }
     };
     ctx.record(|| ProbeSample {

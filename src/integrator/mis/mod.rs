@@ -23,7 +23,7 @@ use super::light::light_record;
 use super::probe::{ProbeSample, no_direction};
 use super::{Context, emitted_at, f_cos};
 use crate::bsdf::Bsdf;
-use crate::geometry::{NO_LIGHT, Ray, offset_origin};
+use crate::geometry::{Along, Ray, offset_origin};
 use crate::light::select::LightSelector;
 use crate::math::Spectrum;
 use crate::sampling::Uniform;
@@ -287,14 +287,11 @@ struct Reached {
 #[inline]
 fn emitter_along(ctx: &Context<'_>, ray: &Ray, delta: bool) -> Option<Reached> {
     let scene = ctx.scene;
-    let hit = if scene.environment.is_some() {
-        scene.geometry.intersect(ray, f32::INFINITY)
-    } else {
-        // Only an emitter's hit can score: the geometry finds it emitters first.
-        scene.geometry.emitter_hit(ray)
-    };
-    match hit {
-        Some(y) if y.light != NO_LIGHT => {
+    match scene
+        .geometry
+        .first_emitter(ray, scene.environment.is_some())
+    {
+        Along::Emitter(y) => {
             let index = y.light as usize;
             let pdf_light = if delta {
                 0.0
@@ -308,8 +305,8 @@ fn emitter_along(ctx: &Context<'_>, ray: &Ray, delta: bool) -> Option<Reached> {
                 point: Some(y.p),
             })
         }
-        Some(_) => None,
-        None => scene.environment.map(|index| {
+        Along::Blocked => None,
+        Along::Escapes => scene.environment.map(|index| {
             let (le, pdf_light) = scene.lights[index].infinite_radiance_pdf(ray.d, ctx.lights);
             Reached {
                 index,
