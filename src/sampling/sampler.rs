@@ -8,7 +8,7 @@
 use glam::Vec2;
 
 use super::rng::{Rng32, hash_words, mix64};
-use super::sobol::{sobol_1d, sobol_2d};
+use super::sobol::{sobol_1d_rev, sobol_2d_rev};
 
 /// A source of uniform numbers in [0, 1). Rejection samplers draw from one of these.
 pub trait Uniform {
@@ -44,6 +44,9 @@ pub struct Sampler {
     /// hash(seed, pixel): the same for every sample of the pixel.
     pixel_key: u64,
     sample_index: u32,
+    /// `sample_index.reverse_bits()` (Sobol only: its points take the reversed index, so
+    /// it is reversed once per sample rather than once per dimension).
+    index_rev: u32,
     spp: u32,
     dimension: u32,
     rng: Rng32,
@@ -77,6 +80,11 @@ impl Sampler {
             kind,
             pixel_key,
             sample_index,
+            index_rev: if kind == SamplerKind::Sobol {
+                sample_index.reverse_bits()
+            } else {
+                0
+            },
             spp: spp.max(1),
             rows: if kind == SamplerKind::Stratified {
                 EqualAreaRows::new(spp.max(1))
@@ -127,7 +135,7 @@ impl Uniform for Sampler {
                 // Padding by reseeding (Burley 2020 §4): dimension 0 of a fresh
                 // shuffled, scrambled sequence for every 1D request.
                 let seed = self.dimension_key() as u32;
-                sobol_1d(self.sample_index, seed)
+                sobol_1d_rev(self.index_rev, seed)
             }
         }
     }
@@ -145,7 +153,7 @@ impl Uniform for Sampler {
                 // Dimensions 0 and 1 of Sobol form a (0,2)-sequence: every 2D request
                 // uses that pair under its own seed.
                 let seed = self.dimension_key() as u32;
-                sobol_2d(self.sample_index, seed)
+                sobol_2d_rev(self.index_rev, seed)
             }
         }
     }

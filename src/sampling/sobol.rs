@@ -44,11 +44,11 @@ const SCRAMBLE: [u32; 2] = [0x912f_69ba, 0x174f_18ab];
 const SEED_MULTIPLIER: u32 = 0x9c8f_2d3b;
 const SHUFFLE_SALT: u32 = 0x79c6_8e4a;
 
-/// The Owen-scrambled shuffle of the sample index (Burley 2020 §3), split into the
-/// byte-table indices of its top 16 bits.
+/// The Owen-scrambled shuffle of the sample index (Burley 2020 §3), given bit-reversed
+/// (`index.reverse_bits()`), split into the byte-table indices of its top 16 bits.
 #[inline]
-fn shuffled_bytes(index: u32, seed: u32) -> (usize, usize) {
-    let shuffled = owen_scramble_rev(index.reverse_bits(), hash(seed ^ SHUFFLE_SALT));
+fn shuffled_bytes(index_rev: u32, seed: u32) -> (usize, usize) {
+    let shuffled = owen_scramble_rev(index_rev, hash(seed ^ SHUFFLE_SALT));
     (
         (shuffled >> 24) as usize,
         ((shuffled >> 16) & 0xff) as usize,
@@ -57,8 +57,7 @@ fn shuffled_bytes(index: u32, seed: u32) -> (usize, usize) {
 
 /// Dimension `d` (0 or 1) of the shuffled index, Owen-scrambled (Burley 2020 §2).
 #[inline]
-fn dimension(d: usize, (high, low): (usize, usize), seed: u32) -> f32 {
-    let t = tables();
+fn dimension(t: &Tables, d: usize, (high, low): (usize, usize), seed: u32) -> f32 {
     let sobol = t.high[d][high] ^ t.low[d][low];
     let scramble = hash(seed.wrapping_mul(SEED_MULTIPLIER) ^ SCRAMBLE[d]);
     u32_to_f32_norm(owen_scramble_rev(sobol, scramble).reverse_bits())
@@ -67,15 +66,28 @@ fn dimension(d: usize, (high, low): (usize, usize), seed: u32) -> f32 {
 /// `sobol_burley::sample(index, 0, seed)`. `index` must be below 2¹⁶.
 #[inline]
 pub fn sobol_1d(index: u32, seed: u32) -> f32 {
-    dimension(0, shuffled_bytes(index, seed), seed)
+    sobol_1d_rev(index.reverse_bits(), seed)
 }
 
 /// `[sobol_burley::sample(index, 0, seed), sobol_burley::sample(index, 1, seed)]`,
 /// computed together. `index` must be below 2¹⁶.
 #[inline]
 pub fn sobol_2d(index: u32, seed: u32) -> Vec2 {
-    let bytes = shuffled_bytes(index, seed);
-    Vec2::new(dimension(0, bytes, seed), dimension(1, bytes, seed))
+    sobol_2d_rev(index.reverse_bits(), seed)
+}
+
+/// [`sobol_1d`] of the index whose bit reversal is `index_rev`: a sampler reverses its
+/// sample index once for all its dimensions (x86-64 has no bit-reversal instruction).
+#[inline]
+pub fn sobol_1d_rev(index_rev: u32, seed: u32) -> f32 {
+    dimension(tables(), 0, shuffled_bytes(index_rev, seed), seed)
+}
+
+/// [`sobol_2d`] of the index whose bit reversal is `index_rev`.
+#[inline]
+pub fn sobol_2d_rev(index_rev: u32, seed: u32) -> Vec2 {
+    let (t, bytes) = (tables(), shuffled_bytes(index_rev, seed));
+    Vec2::new(dimension(t, 0, bytes, seed), dimension(t, 1, bytes, seed))
 }
 
 #[cfg(test)]
