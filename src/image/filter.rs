@@ -131,8 +131,9 @@ const I32_SAFE: f32 = 1.0e9;
 /// A [`Filter`] whose Gaussian constants (α = −1/2σ², and the bias exp(α r²) that makes
 /// the weight vanish at the radius, as Mitsuba's `gaussian.cpp`) are computed once, and
 /// whose weights are evaluated four at a time (the Gaussian's with [`exp4`]): the splatting loop
-/// otherwise called libm's `expf` twice per weight, 16 times per sample, 16 % of a
-/// Gaussian-filtered render's instructions.
+/// otherwise called libm's `expf` twice per weight, 16 times per sample at the default
+/// radius (4 weights per axis), 16 % of a Gaussian-filtered render's instructions.
+/// [`Filter::eval`] stays the plain definition these weights are tested against.
 #[derive(Clone, Copy, Debug)]
 pub struct PreparedFilter {
     filter: Filter,

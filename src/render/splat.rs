@@ -94,7 +94,8 @@ fn splat(
 /// Weighted sums of one pixel's splats within a tile and round, in f64 so the variance
 /// from sums (M2 = Σw·x² − (Σw·x)²/W) keeps its precision; cheaper per splat than a
 /// weighted Welford update, and turned into [`PixelStats`] once per round. The sums sit
-/// in one array of eight (W, Σw², Σw·x, Σ(w·x)·x), added as four two-lane f64 steps.
+/// in one array of eight (W, Σw², Σw·x, Σ(w·x)·x), so that the compiler can add them
+/// in two-lane f64 steps.
 #[derive(Clone, Copy, Default)]
 struct Splats {
     count: u32,
