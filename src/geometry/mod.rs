@@ -4,11 +4,13 @@
 pub mod aabb;
 pub mod bvh;
 pub mod hit;
+pub mod leaf_blocks;
 pub mod mesh;
 pub mod ray;
 pub mod scene_geometry;
 pub mod shape;
 pub mod triangle;
+pub mod triangle4;
 
 pub use aabb::Aabb;
 pub use bvh::{Bvh, TriangleSet};

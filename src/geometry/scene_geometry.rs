@@ -3,8 +3,9 @@
 
 use glam::Vec3;
 
-use super::bvh::Bvh;
+use super::bvh::{Bvh, PADDING};
 use super::hit::{NO_LIGHT, SurfaceHit};
+use super::leaf_blocks::{LeafBlocks, wants_blocks};
 use super::mesh::Mesh;
 use super::shape::{Shape, ShapeHit};
 use super::{Aabb, Ray, offset_origin};
@@ -28,6 +29,9 @@ pub struct Geometry {
     /// Meshes, for shading normals and texture coordinates of triangles.
     pub meshes: Vec<Mesh>,
     bvh: Bvh,
+    /// The leaves' triangles in SIMD blocks, where most primitives are triangles (then
+    /// `prims` holds padding slots nothing hits, see [`LeafBlocks`]).
+    blocks: Option<LeafBlocks>,
     /// The emitting primitives behind a BVH of their own, for [`Geometry::first_emitter`];
     /// `None` where they are more than [`EMITTER_SHARE`] of all primitives.
     emitters: Option<Emitters>,
@@ -59,19 +63,34 @@ pub enum Along {
 const EMITTER_SHARE: f32 = 0.25;
 
 impl Geometry {
-    /// Builds the BVH and stores primitives in its leaf order.
+    /// Builds the BVH and stores primitives in its leaf order (with leaf blocks where
+    /// most are triangles, see [`LeafBlocks`]).
     pub fn new(prims: Vec<Primitive>, meshes: Vec<Mesh>) -> Geometry {
-        let bounds: Vec<Aabb> = prims.iter().map(|p| p.shape.bounds()).collect();
-        let bvh = Bvh::build(&bounds);
-        let prims: Vec<Primitive> = bvh
-            .primitive_order()
-            .iter()
-            .map(|&i| prims[i as usize])
-            .collect();
+        let blocks = wants_blocks(&prims);
+        Geometry::build(prims, meshes, blocks)
+    }
+
+    /// [`Geometry::new`] with leaf blocks or without.
+    fn build(prims: Vec<Primitive>, meshes: Vec<Mesh>, use_blocks: bool) -> Geometry {
+        let (bvh, prims, blocks) = if use_blocks && !prims.is_empty() {
+            let (bvh, laid, blocks) = LeafBlocks::build(&prims);
+            (bvh, laid, Some(blocks))
+        } else {
+            let bounds: Vec<Aabb> = prims.iter().map(|p| p.shape.bounds()).collect();
+            let bvh = Bvh::build(&bounds);
+            let laid = bvh
+                .primitive_order()
+                .iter()
+                .map(|&i| prims[i as usize])
+                .collect();
+            (bvh, laid, None)
+        };
+        let is_padding = |i: usize| blocks.is_some() && bvh.primitive_order()[i] == PADDING;
         let emitting: Vec<u32> = (0..prims.len() as u32)
-            .filter(|&i| prims[i as usize].light != NO_LIGHT)
+            .filter(|&i| prims[i as usize].light != NO_LIGHT && !is_padding(i as usize))
             .collect();
-        let emitters = (emitting.len() as f32 <= EMITTER_SHARE * prims.len() as f32).then(|| {
+        let real = (0..prims.len()).filter(|&i| !is_padding(i)).count();
+        let emitters = (emitting.len() as f32 <= EMITTER_SHARE * real as f32).then(|| {
             let bounds: Vec<Aabb> = emitting
                 .iter()
                 .map(|&i| prims[i as usize].shape.bounds())
@@ -88,11 +107,13 @@ impl Geometry {
             prims,
             meshes,
             bvh,
+            blocks,
             emitters,
         }
     }
 
-    /// The primitives, in BVH order (indices match [`SurfaceHit::prim`]).
+    /// The primitives, in BVH order (indices match [`SurfaceHit::prim`]); with leaf
+    /// blocks, padding slots hold copies of a primitive with an empty triangle.
     pub fn primitives(&self) -> &[Primitive] {
         &self.prims
     }
@@ -110,14 +131,21 @@ impl Geometry {
     /// The closest hit of `ray` in (0, t_max), with its shading data.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<SurfaceHit> {
-        // Every hit the closure reports (t below the closest so far) becomes the closest,
-        // so the last one it reports is the winner: keep its surface parameters.
+        // Every hit a leaf reports (t below the closest so far) becomes the closest, so
+        // the last one reported is the winner: keep its surface parameters.
         let mut last = None;
-        let (prim, _) = self.bvh.closest_hit(ray, t_max, |i, r, t| {
-            let hit = self.prims[i as usize].shape.intersect(r, t)?;
-            last = Some(hit);
-            Some(hit.t)
-        })?;
+        let (prim, _) = match &self.blocks {
+            Some(blocks) => self.bvh.closest_hit_leaf(ray, t_max, |first, _, r, t| {
+                let (prim, hit) = blocks.closest_hit(&self.prims, first, r, t)?;
+                last = Some(hit);
+                Some((prim, hit.t))
+            }),
+            None => self.bvh.closest_hit(ray, t_max, |i, r, t| {
+                let hit = self.prims[i as usize].shape.intersect(r, t)?;
+                last = Some(hit);
+                Some(hit.t)
+            }),
+        }?;
         self.surface_hit(prim, ray, &last?)
     }
 
@@ -170,9 +198,14 @@ impl Geometry {
     /// True when something blocks `ray` in (0, t_max).
     #[inline]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
-        self.bvh.any_hit(ray, t_max, |i, r, t| {
-            self.prims[i as usize].shape.intersect(r, t).is_some()
-        })
+        match &self.blocks {
+            Some(blocks) => self.bvh.any_hit_leaf(ray, t_max, |first, _, r, t| {
+                blocks.any_hit(&self.prims, first, r, t)
+            }),
+            None => self.bvh.any_hit(ray, t_max, |i, r, t| {
+                self.prims[i as usize].shape.intersect(r, t).is_some()
+            }),
+        }
     }
 
     /// True when the segment from surface point `x` (geometric normal `nx`) to surface
@@ -223,6 +256,9 @@ impl Geometry {
         self.prims[prim as usize].light != NO_LIGHT
     }
 }
+
+#[cfg(test)]
+mod leaf_block_tests;
 
 #[cfg(test)]
 mod tests {

@@ -9,7 +9,7 @@
 //! copied afterwards. Slots a subtree does not need stay unused; only the wide collapse
 //! reads this tree, by following child links.
 
-use glam::Vec3;
+use glam::Vec3A;
 
 use super::node::MAX_LEAF_SIZE;
 use crate::geometry::Aabb;
@@ -20,9 +20,34 @@ const BIN_COUNT: usize = 16;
 const TRAVERSAL_COST: f32 = 1.0;
 /// Subtrees with fewer primitives than this are built on the current thread.
 const PARALLEL_THRESHOLD: usize = 4096;
+/// SAH cost of testing one block of up to [`MAX_LEAF_SIZE`] primitives at once
+/// ([`LeafKind::Blocks`]), relative to one traversal step.
+const BLOCK_COST: f32 = 1.0;
 /// Below this depth SAH chooses splits; deeper nodes split at the object median, which
 /// bounds the tree depth (and so the traversal stack) for any input.
 const MAX_SAH_DEPTH: usize = 40;
+
+/// How leaves will be tested, which sets what the SAH charges for them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LeafKind {
+    /// One primitive at a time: a leaf of n primitives costs n tests.
+    Single,
+    /// Up to [`MAX_LEAF_SIZE`] primitives in one SIMD test: counts enter the SAH rounded
+    /// up to whole blocks, as in Embree's builders for its Triangle4 leaves, so leaves
+    /// fill up.
+    Blocks,
+}
+
+impl LeafKind {
+    /// SAH cost of intersecting `count` primitives in leaves.
+    #[inline]
+    fn cost(self, count: u32) -> f32 {
+        match self {
+            LeafKind::Single => count as f32,
+            LeafKind::Blocks => count.div_ceil(MAX_LEAF_SIZE as u32) as f32 * BLOCK_COST,
+        }
+    }
+}
 
 /// A node of the binary tree. A leaf has `count > 0` primitives at `first ..` in the
 /// primitive order; an inner node has `count == 0` and children `left`, `right`.
@@ -49,7 +74,7 @@ pub struct BinaryBvh {
 /// Builds the binary tree over `bounds` (which must be non-empty). Primitives with empty
 /// or non-finite boxes are kept: boxes with a NaN count as empty, and centroids that are
 /// not finite are replaced by a finite stand-in for binning.
-pub fn build_binary(bounds: &[Aabb]) -> BinaryBvh {
+pub fn build_binary(bounds: &[Aabb], kind: LeafKind) -> BinaryBvh {
     let has_nan = |b: &Aabb| b.min.is_nan() || b.max.is_nan();
     let sanitized: Vec<Aabb>;
     let bounds = if bounds.iter().any(has_nan) {
@@ -61,14 +86,14 @@ pub fn build_binary(bounds: &[Aabb]) -> BinaryBvh {
     } else {
         bounds
     };
-    let centroids: Vec<Vec3> = bounds
+    let mut refs: Vec<PrimRef> = bounds
         .iter()
-        .map(|b| {
-            let c = b.centroid();
-            if c.is_finite() { c } else { Vec3::ZERO }
+        .enumerate()
+        .map(|(id, b)| PrimRef {
+            bounds: BuildBox::from(b),
+            id: id as u32,
         })
         .collect();
-    let mut order: Vec<u32> = (0..bounds.len() as u32).collect();
     let unused = BinaryNode {
         bounds: Aabb::EMPTY,
         first_or_left: 0,
@@ -76,18 +101,81 @@ pub fn build_binary(bounds: &[Aabb]) -> BinaryBvh {
         count: 0,
     };
     let mut nodes = vec![unused; 2 * bounds.len() - 1];
-    let input = Input {
-        bounds,
-        centroids: &centroids,
+    let input = Input { kind };
+    build_subtree(&input, &mut nodes, 0, &mut refs, 0, 0);
+    BinaryBvh {
+        nodes,
+        order: refs.iter().map(|r| r.id).collect(),
+    }
+}
+
+/// A box as the build handles it: in SSE lanes (`Vec3A`), where min and max are one
+/// instruction each (glam's `Vec3` min and max keep `f32::min`'s NaN rule, which cost
+/// three; the boxes here hold no NaN). The same values as [`Aabb`]'s operations.
+#[derive(Clone, Copy, Debug)]
+struct BuildBox {
+    min: Vec3A,
+    max: Vec3A,
+}
+
+impl BuildBox {
+    const EMPTY: BuildBox = BuildBox {
+        min: Vec3A::INFINITY,
+        max: Vec3A::NEG_INFINITY,
     };
-    build_subtree(&input, &mut nodes, 0, &mut order, 0, 0);
-    BinaryBvh { nodes, order }
+
+    fn from(b: &Aabb) -> BuildBox {
+        BuildBox {
+            min: b.min.into(),
+            max: b.max.into(),
+        }
+    }
+
+    #[inline(always)]
+    fn union(self, o: BuildBox) -> BuildBox {
+        BuildBox {
+            min: self.min.min(o.min),
+            max: self.max.max(o.max),
+        }
+    }
+
+    #[inline(always)]
+    fn grow(self, p: Vec3A) -> BuildBox {
+        BuildBox {
+            min: self.min.min(p),
+            max: self.max.max(p),
+        }
+    }
+
+    fn aabb(self) -> Aabb {
+        Aabb {
+            min: self.min.into(),
+            max: self.max.into(),
+        }
+    }
+
+    /// The centroid ([`Aabb::centroid`]), or the origin where it is not finite (empty or
+    /// unbounded boxes), so binning always has a finite coordinate.
+    #[inline(always)]
+    fn centroid(&self) -> Vec3A {
+        let c = 0.5 * (self.min + self.max);
+        if c.is_finite() { c } else { Vec3A::ZERO }
+    }
+}
+
+/// A primitive as the build moves it: its box and index. The build partitions these
+/// records themselves, not indices into the boxes, so every pass over a node's
+/// primitives reads consecutive memory (as Embree's builders partition their PrimRefs).
+#[derive(Clone, Copy, Debug)]
+struct PrimRef {
+    bounds: BuildBox,
+    /// Index into the boxes given to [`build_binary`].
+    id: u32,
 }
 
 /// Read-only build input shared by all threads.
-struct Input<'a> {
-    bounds: &'a [Aabb],
-    centroids: &'a [Vec3],
+struct Input {
+    kind: LeafKind,
 }
 
 /// Builds the subtree over `prims` (the primitive order from position `first`) into
@@ -96,11 +184,11 @@ fn build_subtree(
     input: &Input,
     nodes: &mut [BinaryNode],
     node_base: u32,
-    prims: &mut [u32],
+    prims: &mut [PrimRef],
     first: u32,
     depth: usize,
 ) {
-    let (bounds, centroid_bounds) = bounds_of(input, prims);
+    let (bounds, centroid_bounds) = bounds_of(prims);
     let split = if depth < MAX_SAH_DEPTH {
         sah_split(input, prims, &bounds, &centroid_bounds)
     } else {
@@ -108,9 +196,9 @@ fn build_subtree(
     };
     let left_count = match split {
         Some(Split::Leaf) => 0,
-        Some(Split::At { axis, bin }) => partition(input, prims, &centroid_bounds, axis, bin),
+        Some(Split::At { axis, bin }) => partition(prims, &centroid_bounds, axis, bin),
         None if prims.len() <= MAX_LEAF_SIZE => 0,
-        None => median_split(input, prims, &centroid_bounds),
+        None => median_split(prims, &centroid_bounds),
     };
     if left_count == 0 {
         nodes[0] = BinaryNode {
@@ -160,13 +248,13 @@ fn run_in_turn(a: impl FnOnce(), b: impl FnOnce()) {
 }
 
 /// The box of the primitives and the box of their centroids.
-fn bounds_of(input: &Input, prims: &[u32]) -> (Aabb, Aabb) {
-    prims.iter().fold((Aabb::EMPTY, Aabb::EMPTY), |(b, c), &p| {
-        (
-            b.union(input.bounds[p as usize]),
-            c.grow(input.centroids[p as usize]),
-        )
-    })
+fn bounds_of(prims: &[PrimRef]) -> (Aabb, Aabb) {
+    let (b, c) = prims
+        .iter()
+        .fold((BuildBox::EMPTY, BuildBox::EMPTY), |(b, c), p| {
+            (b.union(p.bounds), c.grow(p.bounds.centroid()))
+        });
+    (b.aabb(), c.aabb())
 }
 
 /// The outcome of the SAH evaluation.
@@ -180,7 +268,7 @@ enum Split {
 /// Bin index of centroid `c` along `axis`: saturating float-to-int casts keep it in range
 /// for any input.
 #[inline]
-fn bin_of(c: Vec3, centroid_bounds: &Aabb, axis: usize) -> usize {
+fn bin_of(c: Vec3A, centroid_bounds: &Aabb, axis: usize) -> usize {
     let extent = centroid_bounds.max[axis] - centroid_bounds.min[axis];
     let scale = BIN_COUNT as f32 * (1.0 - 1e-6) / extent;
     (((c[axis] - centroid_bounds.min[axis]) * scale) as usize).min(BIN_COUNT - 1)
@@ -188,59 +276,71 @@ fn bin_of(c: Vec3, centroid_bounds: &Aabb, axis: usize) -> usize {
 
 /// The best SAH split (Wald 2007, §3), `Leaf` when a leaf costs less, or `None` when the
 /// centroids cannot be separated by binning.
-fn sah_split(input: &Input, prims: &[u32], bounds: &Aabb, centroid_bounds: &Aabb) -> Option<Split> {
+fn sah_split(
+    input: &Input,
+    prims: &[PrimRef],
+    bounds: &Aabb,
+    centroid_bounds: &Aabb,
+) -> Option<Split> {
     let n = prims.len();
     if n == 1 {
         return Some(Split::Leaf);
     }
     let extent = centroid_bounds.extent();
-    let mut bins = [[(Aabb::EMPTY, 0u32); BIN_COUNT]; 3];
-    for &p in prims {
-        let c = input.centroids[p as usize];
+    let mut bins = [[(BuildBox::EMPTY, 0u32); BIN_COUNT]; 3];
+    for p in prims {
+        let c = p.bounds.centroid();
         for (axis, axis_bins) in bins.iter_mut().enumerate() {
             if extent[axis] > 0.0 {
                 let bin = &mut axis_bins[bin_of(c, centroid_bounds, axis)];
-                *bin = (bin.0.union(input.bounds[p as usize]), bin.1 + 1);
+                *bin = (bin.0.union(p.bounds), bin.1 + 1);
             }
         }
     }
     // Cost relative to one primitive test per unit of parent area:
-    // C = C_trav + (A_L·N_L + A_R·N_R) / A.
+    // C = C_trav + (A_L·C(N_L) + A_R·C(N_R)) / A, C(N) = N or whole blocks (`LeafKind`).
+    let leaf_cost = |count: u32| input.kind.cost(count);
     let mut best: Option<(f32, usize, usize)> = None;
     for (axis, axis_bins) in bins.iter().enumerate() {
         if extent[axis] <= 0.0 {
             continue;
         }
-        // Sweep from the right storing A_R·N_R, then from the left evaluating the cost.
-        let mut right_cost = [0.0f32; BIN_COUNT];
-        let (mut acc, mut count) = (Aabb::EMPTY, 0u32);
-        for bin in (1..BIN_COUNT).rev() {
-            acc = acc.union(axis_bins[bin].0);
-            count += axis_bins[bin].1;
-            right_cost[bin] = if count > 0 {
-                acc.surface_area() * count as f32
-            } else {
-                f32::INFINITY
-            };
+        // Only the occupied bins matter: a split between two of them is the same split
+        // wherever it falls in the empty bins between, and the first such place wins a
+        // tie, so sweeping the occupied bins alone chooses exactly what sweeping all
+        // would (most nodes are small, and most of their bins empty).
+        let mut used = [0usize; BIN_COUNT];
+        let mut m = 0;
+        for (bin, b) in axis_bins.iter().enumerate() {
+            if b.1 > 0 {
+                used[m] = bin;
+                m += 1;
+            }
         }
-        let (mut acc, mut count) = (Aabb::EMPTY, 0u32);
-        for bin in 1..BIN_COUNT {
-            acc = acc.union(axis_bins[bin - 1].0);
-            count += axis_bins[bin - 1].1;
-            let cost = if count > 0 {
-                acc.surface_area() * count as f32 + right_cost[bin]
-            } else {
-                f32::INFINITY
-            };
+        // Sweep from the right storing A_R·C(N_R), then from the left evaluating the cost
+        // of splitting just above each occupied bin.
+        let mut right_cost = [0.0f32; BIN_COUNT];
+        let (mut acc, mut count) = (BuildBox::EMPTY, 0u32);
+        for j in (1..m).rev() {
+            acc = acc.union(axis_bins[used[j]].0);
+            count += axis_bins[used[j]].1;
+            right_cost[j] = acc.aabb().surface_area() * leaf_cost(count);
+        }
+        let (mut acc, mut count) = (BuildBox::EMPTY, 0u32);
+        for j in 1..m {
+            let below = used[j - 1];
+            acc = acc.union(axis_bins[below].0);
+            count += axis_bins[below].1;
+            let cost = acc.aabb().surface_area() * leaf_cost(count) + right_cost[j];
             if cost < best.map_or(f32::INFINITY, |b| b.0) {
-                best = Some((cost, axis, bin));
+                best = Some((cost, axis, below + 1));
             }
         }
     }
     let (cost, axis, bin) = best?;
     let area = bounds.surface_area();
     let split_cost = TRAVERSAL_COST + if area > 0.0 { cost / area } else { 0.0 };
-    if n <= MAX_LEAF_SIZE && n as f32 <= split_cost {
+    if n <= MAX_LEAF_SIZE && leaf_cost(n as u32) <= split_cost {
         Some(Split::Leaf)
     } else {
         Some(Split::At { axis, bin })
@@ -248,17 +348,11 @@ fn sah_split(input: &Input, prims: &[u32], bounds: &Aabb, centroid_bounds: &Aabb
 }
 
 /// Moves primitives whose centroid bin is below `bin` to the front; returns their count.
-fn partition(
-    input: &Input,
-    prims: &mut [u32],
-    centroid_bounds: &Aabb,
-    axis: usize,
-    bin: usize,
-) -> usize {
-    let goes_left = |p: u32| bin_of(input.centroids[p as usize], centroid_bounds, axis) < bin;
+fn partition(prims: &mut [PrimRef], centroid_bounds: &Aabb, axis: usize, bin: usize) -> usize {
+    let goes_left = |p: &PrimRef| bin_of(p.bounds.centroid(), centroid_bounds, axis) < bin;
     let mut left = 0;
     for i in 0..prims.len() {
-        if goes_left(prims[i]) {
+        if goes_left(&prims[i]) {
             prims.swap(i, left);
             left += 1;
         }
@@ -267,7 +361,7 @@ fn partition(
 }
 
 /// Splits at the object median along the widest centroid axis; returns the left count.
-fn median_split(input: &Input, prims: &mut [u32], centroid_bounds: &Aabb) -> usize {
+fn median_split(prims: &mut [PrimRef], centroid_bounds: &Aabb) -> usize {
     let extent = centroid_bounds.extent();
     let axis = if extent.x >= extent.y && extent.x >= extent.z {
         0
@@ -277,8 +371,8 @@ fn median_split(input: &Input, prims: &mut [u32], centroid_bounds: &Aabb) -> usi
         2
     };
     let mid = prims.len() / 2;
-    prims.select_nth_unstable_by(mid, |&a, &b| {
-        input.centroids[a as usize][axis].total_cmp(&input.centroids[b as usize][axis])
+    prims.select_nth_unstable_by(mid, |a, b| {
+        a.bounds.centroid()[axis].total_cmp(&b.bounds.centroid()[axis])
     });
     mid
 }
@@ -286,6 +380,7 @@ fn median_split(input: &Input, prims: &mut [u32], centroid_bounds: &Aabb) -> usi
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::Vec3;
 
     /// Checks every reachable node: leaves cover the primitive order once, boxes nest.
     fn check(tree: &BinaryBvh, bounds: &[Aabb]) {
@@ -338,7 +433,9 @@ mod tests {
             Aabb::EMPTY,
         ];
         for bounds in [spread, identical, flat, with_empty] {
-            check(&build_binary(&bounds), &bounds);
+            for kind in [LeafKind::Single, LeafKind::Blocks] {
+                check(&build_binary(&bounds, kind), &bounds);
+            }
         }
     }
 }

@@ -6,6 +6,7 @@
 
 use super::build::BinaryBvh;
 use super::node::{ChildRef, WIDTH, WideNode};
+use super::{BLOCK, PADDING};
 
 /// Wide nodes (root at 0) and the depth of the deepest one (the root has depth 1).
 pub struct WideTree {
@@ -38,6 +39,25 @@ pub fn collapse(tree: &BinaryBvh) -> WideTree {
         }
     }
     WideTree { nodes, depth }
+}
+
+/// Lays the leaves out in blocks for [`super::Bvh::build_blocks`]: every leaf's
+/// primitives move to the next multiple of [`BLOCK`] in a new primitive order, the rest of
+/// the block holding [`PADDING`], and the leaf references are rewritten to match. Leaves
+/// are laid out in node order, so a node's leaves sit together in memory. Returns the
+/// new order.
+pub fn lay_out_blocks(nodes: &mut [WideNode], order: &[u32]) -> Vec<u32> {
+    let mut laid = Vec::with_capacity(order.len() + order.len() / 2);
+    for node in nodes.iter_mut() {
+        for child in node.children.iter_mut().filter(|c| c.is_leaf()) {
+            let (first, count) = child.leaf_range();
+            let start = laid.len() as u32;
+            laid.extend_from_slice(&order[first as usize..(first + count) as usize]);
+            laid.resize(start as usize + BLOCK, PADDING);
+            *child = ChildRef::leaf(start, count);
+        }
+    }
+    laid
 }
 
 /// Marks unused entries of a child list.
@@ -83,7 +103,7 @@ fn area(tree: &BinaryBvh, i: u32) -> f32 {
 mod tests {
     use glam::Vec3;
 
-    use super::super::build::build_binary;
+    use super::super::build::{LeafKind, build_binary};
     use super::*;
     use crate::geometry::Aabb;
 
@@ -97,7 +117,7 @@ mod tests {
                         .grow(Vec3::splat(i as f32 + 0.5))
                 })
                 .collect();
-            let binary = build_binary(&bounds);
+            let binary = build_binary(&bounds, LeafKind::Single);
             let wide = collapse(&binary);
             let mut covered = vec![0; n];
             for node in &wide.nodes {

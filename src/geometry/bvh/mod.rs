@@ -5,7 +5,12 @@
 //! Build: binary binned SAH (Wald 2007), collapsed into 4-wide nodes whose child boxes
 //! are stored structure-of-arrays (Wald et al. 2008; Embree's BVH4), see [`node`].
 //! Queries: nearest-first closest-hit and any-hit traversal with a fixed-size stack
-//! and the robust slab test of Ize 2013.
+//! and the robust slab test of Ize 2013, a primitive or a whole leaf at a time.
+//!
+//! Leaves: one primitive at a time ([`Bvh::build`]), or blocks of up to four that the
+//! caller tests at once in SIMD lanes ([`Bvh::build_blocks`]: the SAH counts whole
+//! blocks, as Embree's builders do for its Triangle4 leaves, and leaves are laid out at
+//! multiples of four). Blocks fill leaves, so the tree has about half the nodes.
 //!
 //! The module leaves shading data (normals, uv) and the primitives themselves to the
 //! caller; [`TriangleSet`] is the ready-made fast path for triangle meshes.
@@ -24,7 +29,14 @@ mod tests;
 pub use triangle_set::TriangleSet;
 
 use crate::geometry::{Aabb, Ray};
+use build::LeafKind;
 use node::{MAX_PRIMITIVES, WideNode};
+
+/// Primitives per leaf block of [`Bvh::build_blocks`]: leaves start at multiples of it.
+pub const BLOCK: usize = node::MAX_LEAF_SIZE;
+
+/// The [`Bvh::primitive_order`] entry of an unused slot in a leaf block.
+pub const PADDING: u32 = u32::MAX;
 
 /// A 4-wide BVH over primitives given by their boxes.
 ///
@@ -51,9 +63,28 @@ impl Bvh {
     /// # Panics
     /// With more than [`node::MAX_PRIMITIVES`] (2²⁹) primitives.
     pub fn build(bounds: &[Aabb]) -> Bvh {
+        Bvh::build_with(bounds, LeafKind::Single)
+    }
+
+    /// Builds for leaves tested a block of up to [`node::MAX_LEAF_SIZE`] primitives at once
+    /// (as [`TriangleSet`] tests four triangles in SIMD lanes): the SAH counts leaves in
+    /// whole blocks (so leaves fill up), and every leaf starts at a multiple of
+    /// [`BLOCK`] in [`Bvh::primitive_order`], whose unused slots hold [`PADDING`].
+    ///
+    /// # Panics
+    /// With more than [`node::MAX_PRIMITIVES`] / [`BLOCK`] primitives.
+    pub fn build_blocks(bounds: &[Aabb]) -> Bvh {
+        Bvh::build_with(bounds, LeafKind::Blocks)
+    }
+
+    fn build_with(bounds: &[Aabb], kind: LeafKind) -> Bvh {
+        let limit = match kind {
+            LeafKind::Single => MAX_PRIMITIVES,
+            LeafKind::Blocks => MAX_PRIMITIVES / BLOCK,
+        };
         assert!(
-            bounds.len() <= MAX_PRIMITIVES,
-            "Bvh holds at most 2^29 primitives, got {}",
+            bounds.len() <= limit,
+            "Bvh holds at most {limit} primitives, got {}",
             bounds.len()
         );
         if bounds.is_empty() {
@@ -64,12 +95,16 @@ impl Bvh {
                 depth: 0,
             };
         }
-        let binary = build::build_binary(bounds);
+        let binary = build::build_binary(bounds, kind);
         let root_bounds = binary.nodes[0].bounds;
-        let wide = collapse::collapse(&binary);
+        let mut wide = collapse::collapse(&binary);
+        let order = match kind {
+            LeafKind::Single => binary.order,
+            LeafKind::Blocks => collapse::lay_out_blocks(&mut wide.nodes, &binary.order),
+        };
         Bvh {
             nodes: wide.nodes,
-            order: binary.order,
+            order,
             bounds: root_bounds,
             depth: wide.depth,
         }
@@ -91,12 +126,35 @@ impl Bvh {
         &self,
         ray: &Ray,
         t_max: f32,
-        intersect: F,
+        mut intersect: F,
+    ) -> Option<(u32, f32)> {
+        self.closest_hit_leaf(ray, t_max, |first, count, ray, mut t_closest| {
+            let mut best = None;
+            for prim in first..first + count {
+                if let Some(t) = intersect(prim, ray, t_closest).filter(|&t| t < t_closest) {
+                    t_closest = t;
+                    best = Some((prim, t));
+                }
+            }
+            best
+        })
+    }
+
+    /// Closest hit in (0, t_max), a leaf at a time: `leaf(first, count, ray, t_closest)`
+    /// tests the primitives at leaf-order positions `first .. first + count` and returns
+    /// (id, t) of the closest with t < t_closest, `id` being whatever the caller wants
+    /// reported. Returns (id, t) of the closest hit.
+    #[inline]
+    pub fn closest_hit_leaf<F: FnMut(u32, u32, &Ray, f32) -> Option<(u32, f32)>>(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        leaf: F,
     ) -> Option<(u32, f32)> {
         if self.nodes.is_empty() {
             return None;
         }
-        traverse::closest_hit(&self.nodes, self.depth, ray, t_max, intersect)
+        traverse::closest_hit(&self.nodes, self.depth, ray, t_max, leaf)
     }
 
     /// Any hit in (0, t_max), for shadow rays: `occludes(prim, ray, t_max)` (with `prim` in
@@ -107,12 +165,26 @@ impl Bvh {
         &self,
         ray: &Ray,
         t_max: f32,
-        occludes: F,
+        mut occludes: F,
+    ) -> bool {
+        self.any_hit_leaf(ray, t_max, |first, count, ray, t_max| {
+            (first..first + count).any(|prim| occludes(prim, ray, t_max))
+        })
+    }
+
+    /// Any hit in (0, t_max), a leaf at a time: `leaf(first, count, ray, t_max)` reports
+    /// whether a primitive at leaf-order positions `first .. first + count` blocks the ray.
+    #[inline]
+    pub fn any_hit_leaf<F: FnMut(u32, u32, &Ray, f32) -> bool>(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        leaf: F,
     ) -> bool {
         if self.nodes.is_empty() {
             return false;
         }
-        traverse::any_hit(&self.nodes, self.depth, ray, t_max, occludes)
+        traverse::any_hit(&self.nodes, self.depth, ray, t_max, leaf)
     }
 
     /// The box of all primitives (empty for an empty tree).
@@ -125,7 +197,7 @@ impl Bvh {
         self.nodes.len()
     }
 
-    /// Number of primitives.
+    /// Number of primitive slots in leaf order (with a block build's padding).
     pub fn primitive_count(&self) -> usize {
         self.order.len()
     }

@@ -124,43 +124,80 @@ fn queries_agree_with_brute_force() {
             let mut rng = Rng32::new(1000 * n as u64 + spheres as u64);
             let shapes = soup(n, spheres, &mut rng);
             let bounds: Vec<Aabb> = shapes.iter().map(Shape::bounds).collect();
-            let bvh = Bvh::build(&bounds);
-            let ordered: Vec<Shape> = bvh
-                .primitive_order()
-                .iter()
-                .map(|&i| shapes[i as usize])
-                .collect();
-            for ray in rays(&shapes, 2000, &mut rng) {
-                for t_max in [f32::INFINITY, 3.0] {
-                    let expected = brute_closest(&shapes, &ray, t_max);
-                    let got =
-                        bvh.closest_hit(&ray, t_max, |p, r, t| ordered[p as usize].intersect(r, t));
-                    assert_eq!(
-                        got.map(|h| h.1),
-                        expected,
-                        "n {n} spheres {spheres} ray {ray:?} t_max {t_max}"
-                    );
-                    if let Some((p, t)) = got {
-                        assert_eq!(
-                            shapes[bvh.primitive_order()[p as usize] as usize]
-                                .intersect(&ray, t_max),
-                            Some(t)
-                        );
-                    }
-                    let occluded = bvh.any_hit(&ray, t_max, |p, r, t| {
-                        ordered[p as usize].intersect(r, t).is_some()
-                    });
-                    assert_eq!(occluded, expected.is_some(), "any-hit, n {n} ray {ray:?}");
-                    if let Some(t) = expected {
-                        // A shadow ray that stops short of the closest hit sees nothing.
-                        let short = bvh.any_hit(&ray, t * 0.999, |p, r, t| {
-                            ordered[p as usize].intersect(r, t).is_some()
-                        });
-                        assert!(!short, "n {n} ray {ray:?} t {t}");
-                    }
-                }
+            for bvh in [Bvh::build(&bounds), Bvh::build_blocks(&bounds)] {
+                check_queries(&bvh, &shapes, &mut rng);
             }
         }
+    }
+}
+
+/// Checks a tree's closest-hit and any-hit answers against brute force.
+fn check_queries(bvh: &Bvh, shapes: &[Shape], rng: &mut Rng32) {
+    let n = shapes.len();
+    let spheres = matches!(shapes.first(), Some(Shape::Sphere { .. }));
+    // Padding slots of a block build hold a primitive nothing hits.
+    let nothing = Shape::Triangle([Vec3::ZERO; 3]);
+    let ordered: Vec<Shape> = bvh
+        .primitive_order()
+        .iter()
+        .map(|&i| shapes.get(i as usize).copied().unwrap_or(nothing))
+        .collect();
+    for ray in rays(shapes, 2000, rng) {
+        for t_max in [f32::INFINITY, 3.0] {
+            let expected = brute_closest(shapes, &ray, t_max);
+            let got = bvh.closest_hit(&ray, t_max, |p, r, t| ordered[p as usize].intersect(r, t));
+            assert_eq!(
+                got.map(|h| h.1),
+                expected,
+                "n {n} spheres {spheres} ray {ray:?} t_max {t_max}"
+            );
+            if let Some((p, t)) = got {
+                assert_eq!(
+                    shapes[bvh.primitive_order()[p as usize] as usize].intersect(&ray, t_max),
+                    Some(t)
+                );
+            }
+            let occluded = bvh.any_hit(&ray, t_max, |p, r, t| {
+                ordered[p as usize].intersect(r, t).is_some()
+            });
+            assert_eq!(occluded, expected.is_some(), "any-hit, n {n} ray {ray:?}");
+            if let Some(t) = expected {
+                // A shadow ray that stops short of the closest hit sees nothing.
+                let short = bvh.any_hit(&ray, t * 0.999, |p, r, t| {
+                    ordered[p as usize].intersect(r, t).is_some()
+                });
+                assert!(!short, "n {n} ray {ray:?} t {t}");
+            }
+        }
+    }
+}
+
+#[test]
+fn block_builds_lay_leaves_out_in_full_blocks_of_four() {
+    let mut rng = Rng32::new(77);
+    for spheres in [false, true] {
+        let shapes = soup(5000, spheres, &mut rng);
+        let bounds: Vec<Aabb> = shapes.iter().map(Shape::bounds).collect();
+        let (single, blocks) = (Bvh::build(&bounds), Bvh::build_blocks(&bounds));
+        let order = blocks.primitive_order();
+        assert_eq!(order.len() % super::BLOCK, 0);
+        let mut seen = vec![0; shapes.len()];
+        for block in order.chunks(super::BLOCK) {
+            let used = block.iter().take_while(|&&i| i != super::PADDING).count();
+            assert!(used > 0 && block[used..].iter().all(|&i| i == super::PADDING));
+            block[..used].iter().for_each(|&i| seen[i as usize] += 1);
+        }
+        assert!(seen.iter().all(|&k| k == 1));
+        // The block SAH fills leaves: on average at least three of four slots, and the
+        // tree has well under the one-primitive-leaf tree's nodes.
+        let fill = shapes.len() as f32 / order.len() as f32;
+        assert!(fill > 0.75, "fill {fill}");
+        assert!(
+            (blocks.node_count() as f32) < 0.7 * single.node_count() as f32,
+            "{} vs {} nodes",
+            blocks.node_count(),
+            single.node_count()
+        );
     }
 }
 

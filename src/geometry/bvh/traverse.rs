@@ -94,14 +94,16 @@ fn with_stack<R>(depth: usize, traverse: impl FnOnce(&mut Stack<'_>) -> R) -> R 
     }
 }
 
-/// Closest hit in (0, t_max); see [`super::Bvh::closest_hit`]. `nodes` must be non-empty.
+/// Closest hit in (0, t_max); see [`super::Bvh::closest_hit_leaf`]. `nodes` must be
+/// non-empty. `leaf(first, count, ray, t_closest)` tests a leaf's primitives and returns
+/// (id, t) of its closest hit with t < t_closest.
 #[inline(always)]
-pub fn closest_hit<F: FnMut(u32, &Ray, f32) -> Option<f32>>(
+pub fn closest_hit<F: FnMut(u32, u32, &Ray, f32) -> Option<(u32, f32)>>(
     nodes: &[WideNode],
     depth: usize,
     ray: &Ray,
     t_max: f32,
-    mut intersect: F,
+    mut leaf: F,
 ) -> Option<(u32, f32)> {
     let data = RayData::new(ray)?;
     let mut t_closest = t_max;
@@ -111,11 +113,11 @@ pub fn closest_hit<F: FnMut(u32, &Ray, f32) -> Option<f32>>(
         loop {
             if current.is_leaf() {
                 let (first, count) = current.leaf_range();
-                for prim in first..first + count {
-                    if let Some(t) = intersect(prim, ray, t_closest).filter(|&t| t < t_closest) {
-                        t_closest = t;
-                        best = Some(prim);
-                    }
+                if let Some((id, t)) =
+                    leaf(first, count, ray, t_closest).filter(|h| h.1 < t_closest)
+                {
+                    t_closest = t;
+                    best = Some(id);
                 }
             } else {
                 let node = &nodes[current.0 as usize];
@@ -130,7 +132,7 @@ pub fn closest_hit<F: FnMut(u32, &Ray, f32) -> Option<f32>>(
             // Pop the next entry the ray can still reach before its closest hit.
             loop {
                 let Some((child, entry)) = stack.pop() else {
-                    return best.map(|prim| (prim, t_closest));
+                    return best.map(|id| (id, t_closest));
                 };
                 if entry <= t_closest {
                     current = child;
@@ -141,14 +143,15 @@ pub fn closest_hit<F: FnMut(u32, &Ray, f32) -> Option<f32>>(
     })
 }
 
-/// Any hit in (0, t_max); see [`super::Bvh::any_hit`]. `nodes` must be non-empty.
+/// Any hit in (0, t_max); see [`super::Bvh::any_hit_leaf`]. `nodes` must be non-empty.
+/// `leaf(first, count, ray, t_max)` reports whether a leaf's primitives block the ray.
 #[inline(always)]
-pub fn any_hit<F: FnMut(u32, &Ray, f32) -> bool>(
+pub fn any_hit<F: FnMut(u32, u32, &Ray, f32) -> bool>(
     nodes: &[WideNode],
     depth: usize,
     ray: &Ray,
     t_max: f32,
-    mut occludes: F,
+    mut leaf: F,
 ) -> bool {
     let Some(data) = RayData::new(ray) else {
         return false;
@@ -158,7 +161,7 @@ pub fn any_hit<F: FnMut(u32, &Ray, f32) -> bool>(
         while let Some((current, _)) = stack.pop() {
             if current.is_leaf() {
                 let (first, count) = current.leaf_range();
-                if (first..first + count).any(|prim| occludes(prim, ray, t_max)) {
+                if leaf(first, count, ray, t_max) {
                     return true;
                 }
             } else {

@@ -1,20 +1,23 @@
-//! A triangle mesh ready for ray queries: a [`Bvh`] over the triangles and the triangles
-//! themselves as (p0, e1, e2) in the tree's leaf order, so a leaf reads consecutive memory
-//! and the Möller–Trumbore test needs no edge subtraction.
+//! A triangle mesh ready for ray queries: a [`Bvh`] built for leaf blocks, and the
+//! triangles as (p0, e1, e2) in four-lane [`Triangle4`] blocks, one per leaf, so a leaf is
+//! one read of consecutive memory and one SIMD Möller–Trumbore test.
 
 use glam::Vec3;
 
-use super::Bvh;
-use crate::geometry::triangle::{TriangleHit, intersect_triangle};
+use super::{BLOCK, Bvh, PADDING};
+use crate::geometry::triangle::TriangleHit;
+use crate::geometry::triangle4::Triangle4;
 use crate::geometry::{Aabb, Ray};
 
-/// Triangles in BVH leaf order with their BVH. Queries return the triangle's index in
-/// the `indices` given to [`TriangleSet::new`].
+/// Triangles in leaf blocks with their BVH. Queries return the triangle's index in the
+/// `indices` given to [`TriangleSet::new`].
 #[derive(Clone, Debug)]
 pub struct TriangleSet {
     bvh: Bvh,
-    /// (p0, p1 − p0, p2 − p0) per triangle, in leaf order.
-    edges: Vec<[Vec3; 3]>,
+    /// One block per leaf, in leaf order: block k holds leaf-order positions 4k .. 4k + 4.
+    blocks: Vec<Triangle4>,
+    /// Number of triangles.
+    len: usize,
 }
 
 impl TriangleSet {
@@ -30,38 +33,53 @@ impl TriangleSet {
             .iter()
             .map(|c| c.map_or(Aabb::EMPTY, |c| Aabb::from_points(&c)))
             .collect();
-        let bvh = Bvh::build(&bounds);
-        let edges = bvh
+        let bvh = Bvh::build_blocks(&bounds);
+        let blocks = bvh
             .primitive_order()
-            .iter()
-            .map(|&i| match corners[i as usize] {
-                Some([p0, p1, p2]) => [p0, p1 - p0, p2 - p0],
-                None => [Vec3::ZERO; 3],
+            .chunks(BLOCK)
+            .map(|slots| {
+                let lanes: Vec<(u32, [Vec3; 3])> = slots
+                    .iter()
+                    .filter(|&&i| i != PADDING)
+                    .map(|&i| {
+                        let edges = match corners[i as usize] {
+                            Some([p0, p1, p2]) => [p0, p1 - p0, p2 - p0],
+                            None => [Vec3::ZERO; 3],
+                        };
+                        (i, edges)
+                    })
+                    .collect();
+                Triangle4::new(&lanes)
             })
             .collect();
-        TriangleSet { bvh, edges }
+        TriangleSet {
+            bvh,
+            blocks,
+            len: indices.len(),
+        }
     }
 
-    /// The closest triangle hit in (0, t_max) (Möller & Trumbore 1997): the triangle's
-    /// original index and the hit (distance and barycentrics).
+    /// The closest triangle hit in (0, t_max) (Möller & Trumbore 1997, four triangles at
+    /// a time): the triangle's original index and the hit (distance and barycentrics).
     #[inline]
     pub fn closest_hit(&self, ray: &Ray, t_max: f32) -> Option<(u32, TriangleHit)> {
         let mut hit = None;
-        let (prim, _) = self.bvh.closest_hit(ray, t_max, |prim, ray, t_closest| {
-            let [p0, e1, e2] = self.edges[prim as usize];
-            let h = intersect_triangle(ray, p0, e1, e2, t_closest)?;
-            hit = Some(h);
-            Some(h.t)
-        })?;
-        Some((self.bvh.primitive_order()[prim as usize], hit?))
+        let (id, _) = self
+            .bvh
+            .closest_hit_leaf(ray, t_max, |first, _, ray, t_closest| {
+                let block = &self.blocks[first as usize / BLOCK];
+                let h = block.closest_hit(ray, t_closest)?;
+                hit = Some(h.hit);
+                Some((block.ids[h.lane], h.hit.t))
+            })?;
+        Some((id, hit?))
     }
 
     /// True when some triangle is hit in (0, t_max) (shadow rays).
     #[inline]
     pub fn any_hit(&self, ray: &Ray, t_max: f32) -> bool {
-        self.bvh.any_hit(ray, t_max, |prim, ray, t_max| {
-            let [p0, e1, e2] = self.edges[prim as usize];
-            intersect_triangle(ray, p0, e1, e2, t_max).is_some()
+        self.bvh.any_hit_leaf(ray, t_max, |first, _, ray, t_max| {
+            self.blocks[first as usize / BLOCK].any_hit(ray, t_max)
         })
     }
 
@@ -70,22 +88,21 @@ impl TriangleSet {
         &self.bvh
     }
 
-    /// Bytes held per triangle: the tree (nodes and primitive order) and the triangles'
-    /// vertex and edge vectors, over the triangle count.
+    /// Bytes held per triangle: the tree (nodes and primitive order) and the triangle
+    /// blocks (vertex, edges and ids, padding lanes included), over the triangle count.
     pub fn bytes_per_triangle(&self) -> f64 {
-        let triangles = self.edges.len().max(1);
-        (self.bvh.memory_bytes() + std::mem::size_of_val(self.edges.as_slice())) as f64
-            / triangles as f64
+        (self.bvh.memory_bytes() + std::mem::size_of_val(self.blocks.as_slice())) as f64
+            / self.len.max(1) as f64
     }
 
     /// Number of triangles.
     pub fn len(&self) -> usize {
-        self.edges.len()
+        self.len
     }
 
     /// True when the set holds no triangles.
     pub fn is_empty(&self) -> bool {
-        self.edges.is_empty()
+        self.len == 0
     }
 }
 
@@ -111,5 +128,49 @@ mod tests {
                 .closest_hit(&down, 1e9)
                 .is_none()
         );
+    }
+
+    #[test]
+    fn blocks_find_the_brute_force_closest_hit() {
+        use crate::geometry::triangle::intersect_triangle;
+        use crate::sampling::Rng32;
+        let mut rng = Rng32::new(41);
+        let mut point =
+            |scale: f32| Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * scale;
+        // A grid of shared vertices (rays meet shared edges) and random triangles over it.
+        let positions: Vec<Vec3> = (0..400).map(|_| point(10.0)).collect();
+        let mut indices: Vec<[u32; 3]> = (0..3000u32)
+            .map(|i| [i % 400, (i * 7 + 1) % 400, (i * 13 + 5) % 400])
+            .collect();
+        indices.push([0, 1, 400]); // names a missing vertex
+        let set = TriangleSet::new(&positions, &indices);
+        let corners = |t: &[u32; 3]| t.map(|i| positions.get(i as usize).copied());
+        let (mut hits, mut blocked) = (0, 0);
+        for k in 0..3000 {
+            let o = point(14.0) - Vec3::splat(2.0);
+            let d = (point(10.0) - o).normalize();
+            let ray = Ray::new(o, d);
+            let t_max = if k % 2 == 0 { f32::INFINITY } else { 6.0 };
+            let brute = indices
+                .iter()
+                .filter_map(|t| match corners(t) {
+                    [Some(a), Some(b), Some(c)] => intersect_triangle(&ray, a, b - a, c - a, t_max),
+                    _ => None,
+                })
+                .map(|h| h.t)
+                .min_by(f32::total_cmp);
+            let got = set.closest_hit(&ray, t_max);
+            assert_eq!(got.map(|(_, h)| h.t), brute, "ray {k}");
+            if let Some((index, hit)) = got {
+                let [a, b, c] = corners(&indices[index as usize]).map(Option::unwrap);
+                let again = intersect_triangle(&ray, a, b - a, c - a, t_max).expect("hit");
+                assert_eq!((again.t, again.b1, again.b2), (hit.t, hit.b1, hit.b2));
+                hits += 1;
+            }
+            assert_eq!(set.any_hit(&ray, t_max), brute.is_some());
+            blocked += set.any_hit(&ray, t_max) as u32;
+        }
+        assert!(hits > 1000 && blocked == hits, "{hits} hits");
+        assert!(set.bytes_per_triangle() > 36.0);
     }
 }

@@ -1,0 +1,142 @@
+//! The scene's leaves as blocks: where most primitives are mesh triangles, the scene BVH
+//! is built with leaf blocks ([`Bvh::build_blocks`]) and each block's triangles are kept
+//! again as one [`Triangle4`], so a leaf's triangles are one SIMD test; its other shapes
+//! (spheres, rectangles, disks) are tested one by one as before.
+
+use super::bvh::{BLOCK, Bvh, PADDING};
+use super::hit::NO_LIGHT;
+use super::scene_geometry::Primitive;
+use super::shape::{Shape, ShapeHit};
+use super::triangle4::Triangle4;
+use super::{Aabb, Ray};
+use glam::{Vec2, Vec3};
+
+/// Per leaf block: its triangles in SIMD lanes, and which lanes hold other shapes.
+#[derive(Clone, Debug)]
+pub struct LeafBlocks {
+    /// Block k's triangles (lanes of other shapes and padding left empty).
+    triangles: Vec<Triangle4>,
+    /// Block k's lanes holding a shape other than a triangle, as a bit mask.
+    others: Vec<u8>,
+}
+
+/// Least share of triangles among the primitives for which the scene BVH is built with
+/// leaf blocks. Below it leaves stay one primitive at a time (the SAH of blocks makes
+/// leaves of four, which costs four tests where the shapes are spheres or rectangles).
+pub const BLOCK_SHARE: f32 = 0.5;
+
+/// True when `prims` should be tested in leaf blocks.
+pub fn wants_blocks(prims: &[Primitive]) -> bool {
+    let triangles = prims
+        .iter()
+        .filter(|p| matches!(p.shape, Shape::Triangle(_)))
+        .count();
+    !prims.is_empty() && triangles as f32 >= BLOCK_SHARE * prims.len() as f32
+}
+
+/// A primitive no ray hits and that does not emit, for the padding slots of leaf blocks.
+fn padding(template: &Primitive) -> Primitive {
+    Primitive {
+        shape: Shape::Triangle(super::shape::Triangle {
+            p0: Vec3::ZERO,
+            e1: Vec3::ZERO,
+            e2: Vec3::ZERO,
+            mesh: 0,
+            index: 0,
+        }),
+        material: template.material,
+        light: NO_LIGHT,
+    }
+}
+
+impl LeafBlocks {
+    /// Builds the BVH with leaf blocks over `prims` (non-empty) and returns it with the
+    /// primitives in its leaf order (padding slots hold a primitive nothing hits) and the
+    /// blocks.
+    pub fn build(prims: &[Primitive]) -> (Bvh, Vec<Primitive>, LeafBlocks) {
+        let bounds: Vec<Aabb> = prims.iter().map(|p| p.shape.bounds()).collect();
+        let bvh = Bvh::build_blocks(&bounds);
+        let filler = padding(&prims[0]);
+        let laid: Vec<Primitive> = bvh
+            .primitive_order()
+            .iter()
+            .map(|&i| {
+                if i == PADDING {
+                    filler
+                } else {
+                    prims[i as usize]
+                }
+            })
+            .collect();
+        let mut triangles = Vec::with_capacity(laid.len() / BLOCK);
+        let mut others = Vec::with_capacity(laid.len() / BLOCK);
+        for (k, block) in laid.chunks(BLOCK).enumerate() {
+            let mut lanes = [(PADDING, [Vec3::ZERO; 3]); BLOCK];
+            let mut other = 0u8;
+            for (lane, (p, &slot)) in block
+                .iter()
+                .zip(&bvh.primitive_order()[k * BLOCK..])
+                .enumerate()
+            {
+                match p.shape {
+                    _ if slot == PADDING => {}
+                    Shape::Triangle(t) => {
+                        lanes[lane] = ((k * BLOCK + lane) as u32, [t.p0, t.e1, t.e2])
+                    }
+                    _ => other |= 1 << lane,
+                }
+            }
+            triangles.push(Triangle4::new(&lanes));
+            others.push(other);
+        }
+        (bvh, laid, LeafBlocks { triangles, others })
+    }
+
+    /// The closest hit in (0, t_closest) among the leaf at `first` (a multiple of
+    /// [`BLOCK`]): its leaf-order position and the hit. Triangles are tested first, then
+    /// the other shapes within the triangles' distance.
+    #[inline(always)]
+    pub fn closest_hit(
+        &self,
+        prims: &[Primitive],
+        first: u32,
+        ray: &Ray,
+        mut t_closest: f32,
+    ) -> Option<(u32, ShapeHit)> {
+        let k = first as usize / BLOCK;
+        let mut best = None;
+        if let Some(h) = self.triangles[k].closest_hit(ray, t_closest) {
+            t_closest = h.hit.t;
+            let uv = Vec2::new(h.hit.b1, h.hit.b2);
+            best = Some((first + h.lane as u32, ShapeHit { t: h.hit.t, uv }));
+        }
+        let mut others = self.others[k];
+        while others != 0 {
+            let prim = first + others.trailing_zeros();
+            others &= others - 1;
+            if let Some(h) = prims[prim as usize].shape.intersect(ray, t_closest) {
+                t_closest = h.t;
+                best = Some((prim, h));
+            }
+        }
+        best
+    }
+
+    /// True when something in the leaf at `first` blocks `ray` in (0, t_max).
+    #[inline(always)]
+    pub fn any_hit(&self, prims: &[Primitive], first: u32, ray: &Ray, t_max: f32) -> bool {
+        let k = first as usize / BLOCK;
+        if self.triangles[k].any_hit(ray, t_max) {
+            return true;
+        }
+        let mut others = self.others[k];
+        while others != 0 {
+            let prim = first + others.trailing_zeros();
+            others &= others - 1;
+            if prims[prim as usize].shape.intersect(ray, t_max).is_some() {
+                return true;
+            }
+        }
+        false
+    }
+}
