@@ -102,7 +102,8 @@ pub fn build_binary(bounds: &[Aabb], kind: LeafKind) -> BinaryBvh {
     };
     let mut nodes = vec![unused; 2 * bounds.len() - 1];
     let input = Input { kind };
-    build_subtree(&input, &mut nodes, 0, &mut refs, 0, 0);
+    let boxes = bounds_of(&refs);
+    build_subtree(&input, &mut nodes, 0, &mut refs, boxes, 0, 0);
     BinaryBvh {
         nodes,
         order: refs.iter().map(|r| r.id).collect(),
@@ -185,20 +186,24 @@ fn build_subtree(
     nodes: &mut [BinaryNode],
     node_base: u32,
     prims: &mut [PrimRef],
+    (bounds, centroid_bounds): (Aabb, Aabb),
     first: u32,
     depth: usize,
 ) {
-    let (bounds, centroid_bounds) = bounds_of(prims);
     let split = if depth < MAX_SAH_DEPTH {
         sah_split(input, prims, &bounds, &centroid_bounds)
     } else {
         None
     };
-    let left_count = match split {
-        Some(Split::Leaf) => 0,
+    // The children's boxes come out of the partition that separates them.
+    let (left_count, left_boxes, right_boxes) = match split {
+        Some(Split::Leaf) => (0, EMPTY_BOXES, EMPTY_BOXES),
         Some(Split::At { axis, bin }) => partition(prims, &centroid_bounds, axis, bin),
-        None if prims.len() <= MAX_LEAF_SIZE => 0,
-        None => median_split(prims, &centroid_bounds),
+        None if prims.len() <= MAX_LEAF_SIZE => (0, EMPTY_BOXES, EMPTY_BOXES),
+        None => {
+            let mid = median_split(prims, &centroid_bounds);
+            (mid, bounds_of(&prims[..mid]), bounds_of(&prims[mid..]))
+        }
     };
     if left_count == 0 {
         nodes[0] = BinaryNode {
@@ -223,13 +228,24 @@ fn build_subtree(
     let (left_prims, right_prims) = prims.split_at_mut(left_count);
     let right_first = first + left_count as u32;
     let parallel = left_count.min(right_prims.len()) >= PARALLEL_THRESHOLD;
-    let build_left = move || build_subtree(input, left_nodes, left, left_prims, first, depth + 1);
+    let build_left = move || {
+        build_subtree(
+            input,
+            left_nodes,
+            left,
+            left_prims,
+            left_boxes,
+            first,
+            depth + 1,
+        )
+    };
     let build_right = move || {
         build_subtree(
             input,
             right_nodes,
             right,
             right_prims,
+            right_boxes,
             right_first,
             depth + 1,
         )
@@ -240,6 +256,9 @@ fn build_subtree(
         run_in_turn(build_left, build_right);
     }
 }
+
+/// The boxes of no primitives.
+const EMPTY_BOXES: (Aabb, Aabb) = (Aabb::EMPTY, Aabb::EMPTY);
 
 /// Runs `a` then `b` on this thread (the serial counterpart of `rayon::join`).
 fn run_in_turn(a: impl FnOnce(), b: impl FnOnce()) {
@@ -257,21 +276,38 @@ fn bounds_of(prims: &[PrimRef]) -> (Aabb, Aabb) {
     (b.aabb(), c.aabb())
 }
 
+/// Where centroids fall among the bins of a node: bin = ⌊(c − min) · scale⌋ per axis, all
+/// three axes in one SSE subtraction and multiplication (the same operations per lane as
+/// one axis at a time).
+struct Binning {
+    min: Vec3A,
+    scale: Vec3A,
+}
+
+impl Binning {
+    fn new(centroid_bounds: &Aabb) -> Binning {
+        let extent = Vec3A::from(centroid_bounds.extent());
+        Binning {
+            min: centroid_bounds.min.into(),
+            scale: Vec3A::splat(BIN_COUNT as f32 * (1.0 - 1e-6)) / extent,
+        }
+    }
+
+    /// The bins of centroid `c` along the three axes (only meaningful along axes where
+    /// the centroids spread); saturating casts keep them in range for any input.
+    #[inline(always)]
+    fn bins(&self, c: Vec3A) -> [usize; 3] {
+        let at = (c - self.min) * self.scale;
+        [at.x, at.y, at.z].map(|x| (x as i32).clamp(0, BIN_COUNT as i32 - 1) as usize)
+    }
+}
+
 /// The outcome of the SAH evaluation.
 enum Split {
     /// Making a leaf is cheapest.
     Leaf,
     /// Split before centroid bin `bin` along `axis`.
     At { axis: usize, bin: usize },
-}
-
-/// Bin index of centroid `c` along `axis`: saturating float-to-int casts keep it in range
-/// for any input.
-#[inline]
-fn bin_of(c: Vec3A, centroid_bounds: &Aabb, axis: usize) -> usize {
-    let extent = centroid_bounds.max[axis] - centroid_bounds.min[axis];
-    let scale = BIN_COUNT as f32 * (1.0 - 1e-6) / extent;
-    (((c[axis] - centroid_bounds.min[axis]) * scale) as usize).min(BIN_COUNT - 1)
 }
 
 /// The best SAH split (Wald 2007, §3), `Leaf` when a leaf costs less, or `None` when the
@@ -287,12 +323,13 @@ fn sah_split(
         return Some(Split::Leaf);
     }
     let extent = centroid_bounds.extent();
+    let binning = Binning::new(centroid_bounds);
     let mut bins = [[(BuildBox::EMPTY, 0u32); BIN_COUNT]; 3];
     for p in prims {
-        let c = p.bounds.centroid();
+        let at = binning.bins(p.bounds.centroid());
         for (axis, axis_bins) in bins.iter_mut().enumerate() {
             if extent[axis] > 0.0 {
-                let bin = &mut axis_bins[bin_of(c, centroid_bounds, axis)];
+                let bin = &mut axis_bins[at[axis]];
                 *bin = (bin.0.union(p.bounds), bin.1 + 1);
             }
         }
@@ -347,17 +384,31 @@ fn sah_split(
     }
 }
 
-/// Moves primitives whose centroid bin is below `bin` to the front; returns their count.
-fn partition(prims: &mut [PrimRef], centroid_bounds: &Aabb, axis: usize, bin: usize) -> usize {
-    let goes_left = |p: &PrimRef| bin_of(p.bounds.centroid(), centroid_bounds, axis) < bin;
+/// Moves primitives whose centroid bin is below `bin` to the front; returns their count
+/// and the boxes (of the primitives and of their centroids) of both sides.
+fn partition(
+    prims: &mut [PrimRef],
+    centroid_bounds: &Aabb,
+    axis: usize,
+    bin: usize,
+) -> (usize, (Aabb, Aabb), (Aabb, Aabb)) {
+    let binning = Binning::new(centroid_bounds);
+    let (mut below, mut above) = ([BuildBox::EMPTY; 2], [BuildBox::EMPTY; 2]);
     let mut left = 0;
     for i in 0..prims.len() {
-        if goes_left(&prims[i]) {
+        let p = prims[i];
+        let c = p.bounds.centroid();
+        let side = if binning.bins(c)[axis] < bin {
             prims.swap(i, left);
             left += 1;
-        }
+            &mut below
+        } else {
+            &mut above
+        };
+        *side = [side[0].union(p.bounds), side[1].grow(c)];
     }
-    left
+    let boxes = |[b, c]: [BuildBox; 2]| (b.aabb(), c.aabb());
+    (left, boxes(below), boxes(above))
 }
 
 /// Splits at the object median along the widest centroid axis; returns the left count.
