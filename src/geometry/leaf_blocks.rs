@@ -3,6 +3,7 @@
 //! again as one [`Triangle4`], so a leaf's triangles are one SIMD test; its other shapes
 //! (spheres, rectangles, disks) are tested one by one as before.
 
+use super::bvh::node::MAX_PRIMITIVES;
 use super::bvh::{BLOCK, Bvh, PADDING};
 use super::hit::NO_LIGHT;
 use super::scene_geometry::Primitive;
@@ -25,8 +26,12 @@ pub struct LeafBlocks {
 /// leaves of four, which costs four tests where the shapes are spheres or rectangles).
 pub const BLOCK_SHARE: f32 = 0.5;
 
-/// True when `prims` should be tested in leaf blocks.
+/// True when `prims` should be tested in leaf blocks (and are few enough for a block
+/// build: at most [`MAX_PRIMITIVES`] / [`BLOCK`]).
 pub fn wants_blocks(prims: &[Primitive]) -> bool {
+    if prims.len() > MAX_PRIMITIVES / BLOCK {
+        return false;
+    }
     let triangles = prims
         .iter()
         .filter(|p| matches!(p.shape, Shape::Triangle(_)))

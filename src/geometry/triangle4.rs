@@ -3,7 +3,7 @@
 //! wide BVH's leaves this way). glam's `Vec4` is SSE2 on x86-64 and NEON on aarch64, both
 //! baseline, so no feature detection is needed.
 //!
-//! Each lane runs the operations of [`intersect_triangle`](super::intersect_triangle) in
+//! Each lane runs the operations of [`intersect_triangle`](super::triangle::intersect_triangle) in
 //! the same order, so a lane's verdict, distance and barycentrics are bit for bit the
 //! scalar test's (tested below); of several hits the nearest wins, the lowest lane on a
 //! tie, as the scalar test run over the lanes in turn would decide.

@@ -110,9 +110,9 @@ pub fn build_binary(bounds: &[Aabb], kind: LeafKind) -> BinaryBvh {
     }
 }
 
-/// A box as the build handles it: in SSE lanes (`Vec3A`), where min and max are one
-/// instruction each (glam's `Vec3` min and max keep `f32::min`'s NaN rule, which cost
-/// three; the boxes here hold no NaN). The same values as [`Aabb`]'s operations.
+/// A box as the build handles it: its three coordinates in one SSE register (`Vec3A`), so
+/// a union is one `minps` and one `maxps` rather than three scalar comparisons each. The
+/// same values as [`Aabb`]'s operations, up to the sign of a zero.
 #[derive(Clone, Copy, Debug)]
 struct BuildBox {
     min: Vec3A,

@@ -42,8 +42,8 @@ pub const PADDING: u32 = u32::MAX;
 ///
 /// The tree stores primitive *positions in leaf order*, not the caller's indices: the
 /// callbacks of [`Bvh::closest_hit`] and [`Bvh::any_hit`] receive `prim`, a position in
-/// [`Bvh::primitive_order`], and `primitive_order()[prim]` is the caller's original index.
-/// Callers that reorder their primitive arrays by `primitive_order` (as [`TriangleSet`]
+/// [`Bvh::primitive_order`], and `primitive_order()[prim]` is the caller's original index
+/// (never [`PADDING`] for a position a callback receives). Callers that reorder their primitive arrays by `primitive_order` (as [`TriangleSet`]
 /// does) can use `prim` directly.
 #[derive(Clone, Debug)]
 pub struct Bvh {
@@ -112,7 +112,9 @@ impl Bvh {
 
     /// Primitive indices in leaf order: `primitive_order()[prim]` is the original index
     /// (into the `bounds` given to [`Bvh::build`]) of the primitive the callbacks call
-    /// `prim`. Reorder primitive arrays by it to index them with `prim` directly.
+    /// `prim`. Reorder primitive arrays by it to index them with `prim` directly. After
+    /// [`Bvh::build_blocks`] the unused slots of leaf blocks hold [`PADDING`]
+    /// (`u32::MAX`), which is no index: skip or replace those entries.
     pub fn primitive_order(&self) -> &[u32] {
         &self.order
     }

@@ -23,6 +23,9 @@ pub struct TriangleSet {
 impl TriangleSet {
     /// Builds the set from shared vertices and index triples. Triples that name a
     /// missing vertex become empty triangles that nothing hits.
+    ///
+    /// # Panics
+    /// With more than 2²⁷ triangles (the leaf blocks' limit, see [`Bvh::build_blocks`]).
     pub fn new(positions: &[Vec3], indices: &[[u32; 3]]) -> TriangleSet {
         let vertex = |i: u32| positions.get(i as usize).copied();
         let corners: Vec<Option<[Vec3; 3]>> = indices
