@@ -73,27 +73,19 @@ impl LeafBlocks {
                 }
             })
             .collect();
-        let mut triangles = Vec::with_capacity(laid.len() / BLOCK);
-        let mut others = Vec::with_capacity(laid.len() / BLOCK);
-        for (k, block) in laid.chunks(BLOCK).enumerate() {
-            let mut lanes = [(PADDING, [Vec3::ZERO; 3]); BLOCK];
-            let mut other = 0u8;
-            for (lane, (p, &slot)) in block
-                .iter()
-                .zip(&bvh.primitive_order()[k * BLOCK..])
-                .enumerate()
-            {
-                match p.shape {
-                    _ if slot == PADDING => {}
-                    Shape::Triangle(t) => {
-                        lanes[lane] = ((k * BLOCK + lane) as u32, [t.p0, t.e1, t.e2])
-                    }
-                    _ => other |= 1 << lane,
-                }
-            }
-            triangles.push(Triangle4::new(&lanes));
-            others.push(other);
-        }
+        let triangles = Triangle4::blocks(bvh.primitive_order(), |at, _| match laid[at].shape {
+            Shape::Triangle(t) => Some((at as u32, [t.p0, t.e1, t.e2])),
+            _ => None,
+        });
+        // Padding slots hold an empty triangle, so they never count as other shapes.
+        let others = laid
+            .chunks(BLOCK)
+            .map(|block| {
+                let other = |(_, p): &(usize, &Primitive)| !matches!(p.shape, Shape::Triangle(_));
+                (block.iter().enumerate().filter(other))
+                    .fold(0u8, |mask, (lane, _)| mask | 1 << lane)
+            })
+            .collect();
         (bvh, laid, LeafBlocks { triangles, others })
     }
 

@@ -11,6 +11,7 @@
 use glam::{BVec4A, Vec3, Vec4};
 
 use super::Ray;
+use super::bvh::PADDING;
 use super::triangle::TriangleHit;
 
 /// Lanes per block.
@@ -65,6 +66,29 @@ impl Triangle4 {
             e2: soa(2),
             ids,
         }
+    }
+
+    /// One block per [`LANES`] slots of a BVH's block-laid primitive order (see
+    /// `Bvh::build_blocks`): `lane(position, index)` gives the (id, [p0, e1, e2]) of the
+    /// primitive `index` at leaf-order `position`, or `None` for a slot that holds no
+    /// triangle. Padding slots (`bvh::PADDING`) stay unused lanes.
+    pub fn blocks(
+        order: &[u32],
+        mut lane: impl FnMut(usize, u32) -> Option<(u32, [Vec3; 3])>,
+    ) -> Vec<Triangle4> {
+        order
+            .chunks(LANES)
+            .enumerate()
+            .map(|(k, slots)| {
+                let mut lanes = [(NO_TRIANGLE, [Vec3::ZERO; 3]); LANES];
+                for (l, &index) in slots.iter().enumerate() {
+                    if index != PADDING {
+                        lanes[l] = lane(k * LANES + l, index).unwrap_or(lanes[l]);
+                    }
+                }
+                Triangle4::new(&lanes)
+            })
+            .collect()
     }
 
     /// The lanes hit in (0, t_max), as a mask, with their distances and barycentrics.

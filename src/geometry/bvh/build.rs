@@ -9,13 +9,12 @@
 //! copied afterwards. Slots a subtree does not need stay unused; only the wide collapse
 //! reads this tree, by following child links.
 
-use glam::Vec3A;
-
 use super::node::MAX_LEAF_SIZE;
+use super::prim_ref::{Binning, BuildBox, PrimRef, bounds_of};
 use crate::geometry::Aabb;
 
 /// Centroid bins per axis.
-const BIN_COUNT: usize = 16;
+pub(super) const BIN_COUNT: usize = 16;
 /// SAH cost of one traversal step, relative to one primitive test.
 const TRAVERSAL_COST: f32 = 1.0;
 /// Subtrees with fewer primitives than this are built on the current thread.
@@ -110,70 +109,6 @@ pub fn build_binary(bounds: &[Aabb], kind: LeafKind) -> BinaryBvh {
     }
 }
 
-/// A box as the build handles it: its three coordinates in one SSE register (`Vec3A`), so
-/// a union is one `minps` and one `maxps` rather than three scalar comparisons each. The
-/// same values as [`Aabb`]'s operations, up to the sign of a zero.
-#[derive(Clone, Copy, Debug)]
-struct BuildBox {
-    min: Vec3A,
-    max: Vec3A,
-}
-
-impl BuildBox {
-    const EMPTY: BuildBox = BuildBox {
-        min: Vec3A::INFINITY,
-        max: Vec3A::NEG_INFINITY,
-    };
-
-    fn from(b: &Aabb) -> BuildBox {
-        BuildBox {
-            min: b.min.into(),
-            max: b.max.into(),
-        }
-    }
-
-    #[inline(always)]
-    fn union(self, o: BuildBox) -> BuildBox {
-        BuildBox {
-            min: self.min.min(o.min),
-            max: self.max.max(o.max),
-        }
-    }
-
-    #[inline(always)]
-    fn grow(self, p: Vec3A) -> BuildBox {
-        BuildBox {
-            min: self.min.min(p),
-            max: self.max.max(p),
-        }
-    }
-
-    fn aabb(self) -> Aabb {
-        Aabb {
-            min: self.min.into(),
-            max: self.max.into(),
-        }
-    }
-
-    /// The centroid ([`Aabb::centroid`]), or the origin where it is not finite (empty or
-    /// unbounded boxes), so binning always has a finite coordinate.
-    #[inline(always)]
-    fn centroid(&self) -> Vec3A {
-        let c = 0.5 * (self.min + self.max);
-        if c.is_finite() { c } else { Vec3A::ZERO }
-    }
-}
-
-/// A primitive as the build moves it: its box and index. The build partitions these
-/// records themselves, not indices into the boxes, so every pass over a node's
-/// primitives reads consecutive memory (as Embree's builders partition their PrimRefs).
-#[derive(Clone, Copy, Debug)]
-struct PrimRef {
-    bounds: BuildBox,
-    /// Index into the boxes given to [`build_binary`].
-    id: u32,
-}
-
 /// Read-only build input shared by all threads.
 struct Input {
     kind: LeafKind,
@@ -264,42 +199,6 @@ const EMPTY_BOXES: (Aabb, Aabb) = (Aabb::EMPTY, Aabb::EMPTY);
 fn run_in_turn(a: impl FnOnce(), b: impl FnOnce()) {
     a();
     b();
-}
-
-/// The box of the primitives and the box of their centroids.
-fn bounds_of(prims: &[PrimRef]) -> (Aabb, Aabb) {
-    let (b, c) = prims
-        .iter()
-        .fold((BuildBox::EMPTY, BuildBox::EMPTY), |(b, c), p| {
-            (b.union(p.bounds), c.grow(p.bounds.centroid()))
-        });
-    (b.aabb(), c.aabb())
-}
-
-/// Where centroids fall among the bins of a node: bin = ⌊(c − min) · scale⌋ per axis, all
-/// three axes in one SSE subtraction and multiplication (the same operations per lane as
-/// one axis at a time).
-struct Binning {
-    min: Vec3A,
-    scale: Vec3A,
-}
-
-impl Binning {
-    fn new(centroid_bounds: &Aabb) -> Binning {
-        let extent = Vec3A::from(centroid_bounds.extent());
-        Binning {
-            min: centroid_bounds.min.into(),
-            scale: Vec3A::splat(BIN_COUNT as f32 * (1.0 - 1e-6)) / extent,
-        }
-    }
-
-    /// The bins of centroid `c` along the three axes (only meaningful along axes where
-    /// the centroids spread); saturating casts keep them in range for any input.
-    #[inline(always)]
-    fn bins(&self, c: Vec3A) -> [usize; 3] {
-        let at = (c - self.min) * self.scale;
-        [at.x, at.y, at.z].map(|x| (x as i32).clamp(0, BIN_COUNT as i32 - 1) as usize)
-    }
 }
 
 /// The outcome of the SAH evaluation.

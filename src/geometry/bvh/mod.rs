@@ -18,6 +18,7 @@
 mod build;
 mod collapse;
 pub mod node;
+mod prim_ref;
 mod traverse;
 
 pub mod bench_mesh;

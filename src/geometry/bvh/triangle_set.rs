@@ -4,7 +4,7 @@
 
 use glam::Vec3;
 
-use super::{BLOCK, Bvh, PADDING};
+use super::{BLOCK, Bvh};
 use crate::geometry::triangle::TriangleHit;
 use crate::geometry::triangle4::Triangle4;
 use crate::geometry::{Aabb, Ray};
@@ -37,24 +37,13 @@ impl TriangleSet {
             .map(|c| c.map_or(Aabb::EMPTY, |c| Aabb::from_points(&c)))
             .collect();
         let bvh = Bvh::build_blocks(&bounds);
-        let blocks = bvh
-            .primitive_order()
-            .chunks(BLOCK)
-            .map(|slots| {
-                let lanes: Vec<(u32, [Vec3; 3])> = slots
-                    .iter()
-                    .filter(|&&i| i != PADDING)
-                    .map(|&i| {
-                        let edges = match corners[i as usize] {
-                            Some([p0, p1, p2]) => [p0, p1 - p0, p2 - p0],
-                            None => [Vec3::ZERO; 3],
-                        };
-                        (i, edges)
-                    })
-                    .collect();
-                Triangle4::new(&lanes)
-            })
-            .collect();
+        let blocks = Triangle4::blocks(bvh.primitive_order(), |_, i| {
+            let edges = match corners[i as usize] {
+                Some([p0, p1, p2]) => [p0, p1 - p0, p2 - p0],
+                None => [Vec3::ZERO; 3],
+            };
+            Some((i, edges))
+        });
         TriangleSet {
             bvh,
             blocks,
