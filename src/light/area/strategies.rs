@@ -186,15 +186,27 @@ pub fn check_sampling(
 /// (an estimator that samples no lights).
 pub fn sampling_summary(lights: &[Light], sampling: Option<LightSampling>) -> String {
     let plural = |n: usize, word: &str| format!("{n} {word}{}", if n == 1 { "" } else { "s" });
-    let textured = |l: &Light| matches!(l, Light::Area(a) if a.texture.is_some());
+    // One pass over the lights (a scene may hold 10⁶): counts per kind, textured apart.
+    let mut counts = [[0usize; 2]; EmitterKind::ALL.len()];
+    let (mut points, mut environments) = (0, 0);
+    for l in lights {
+        match (l, EmitterKind::of_light(l)) {
+            (_, Some(kind)) => {
+                let at = EmitterKind::ALL
+                    .iter()
+                    .position(|&k| k == kind)
+                    .unwrap_or(0);
+                let textured = matches!(l, Light::Area(a) if a.texture.is_some());
+                counts[at][usize::from(textured)] += 1;
+            }
+            (Light::Point(_), None) => points += 1,
+            (_, None) => environments += 1,
+        }
+    }
     let mut parts = Vec::new();
-    for kind in EmitterKind::ALL {
+    for (kind, counts) in EmitterKind::ALL.into_iter().zip(counts) {
         // Textured emitters apart: `best` samples them by emitted power (`area`).
-        for with_texture in [false, true] {
-            let n = lights
-                .iter()
-                .filter(|l| EmitterKind::of_light(l) == Some(kind) && textured(l) == with_texture)
-                .count();
+        for (with_texture, n) in [(false, counts[0]), (true, counts[1])] {
             let word = if with_texture {
                 format!("textured {}", kind.name())
             } else {
@@ -211,10 +223,7 @@ pub fn sampling_summary(lights: &[Light], sampling: Option<LightSampling>) -> St
             }
         }
     }
-    let is_point: fn(&Light) -> bool = |l| matches!(l, Light::Point(_));
-    let is_environment: fn(&Light) -> bool = |l| matches!(l, Light::Environment(_));
-    for (word, is) in [("point", is_point), ("environment", is_environment)] {
-        let n = lights.iter().filter(|l| is(l)).count();
+    for (word, n) in [("point", points), ("environment", environments)] {
         if n > 0 {
             parts.push(plural(n, word));
         }
@@ -241,6 +250,20 @@ mod tests {
                 assert_eq!(s.resolve(kind), s, "{}", kind.name());
             }
         }
+    }
+
+    #[test]
+    fn summaries_count_each_kind_once_in_the_listed_order() {
+        let scene = crate::scene::builtin::build("many-lights?n=10").expect("scene");
+        assert_eq!(
+            sampling_summary(&scene.lights, Some(LightSampling::Best)),
+            "7 spheres (solid-angle), 3 rectangles (solid-angle)"
+        );
+        assert_eq!(
+            sampling_summary(&scene.lights[..8], None),
+            "5 spheres, 3 rectangles"
+        );
+        assert_eq!(sampling_summary(&[], None), "none");
     }
 
     #[test]

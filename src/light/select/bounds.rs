@@ -32,8 +32,19 @@ pub struct LightBounds {
 }
 
 impl LightBounds {
+    /// No lights: φ = 0, which [`LightBounds::union`] treats as the identity.
+    pub const EMPTY: LightBounds = LightBounds {
+        aabb: Aabb::EMPTY,
+        phi: 0.0,
+        w: Vec3::Z,
+        cos_theta_o: 1.0,
+        cos_theta_e: 1.0,
+        two_sided: false,
+    };
+
     /// The bounds of two clusters together: box union, summed φ, the union of the normal
     /// cones and the wider emission angle.
+    #[inline]
     pub fn union(&self, b: &LightBounds) -> LightBounds {
         if self.phi == 0.0 {
             return *b;

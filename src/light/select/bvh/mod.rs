@@ -15,7 +15,7 @@
 mod build;
 mod wide;
 
-use build::{BuildLight, Builder};
+use build::BuildLight;
 use wide::{LANES, NOT_IN_TREE, Slot, WideNode, collapse};
 
 use super::{LightSelector, PreparedBounds, Selection};
@@ -29,6 +29,15 @@ struct Node {
     bounds: LightBounds,
     second_or_light: u32,
     leaf: bool,
+}
+
+impl Node {
+    /// What a slot holds before the build fills it.
+    const PLACEHOLDER: Node = Node {
+        bounds: LightBounds::EMPTY,
+        second_or_light: 0,
+        leaf: true,
+    };
 }
 
 /// The light BVH selector.
@@ -66,14 +75,12 @@ impl BvhSelector {
             })
             .filter(|l| l.bounds.phi > 0.0 && l.centroid.is_finite())
             .collect();
-        let mut builder = Builder {
-            nodes: Vec::with_capacity(2 * items.len()),
+        let nodes = if items.is_empty() {
+            Vec::new()
+        } else {
+            build::build(&mut items)
         };
-        if !items.is_empty() {
-            builder.build(&mut items, 0);
-        }
-        let prepared: Vec<PreparedBounds> = builder
-            .nodes
+        let prepared: Vec<PreparedBounds> = nodes
             .iter()
             .map(|n| PreparedBounds::new(&n.bounds))
             .collect();
@@ -91,13 +98,13 @@ impl BvhSelector {
             depth: 0,
             infinite,
         };
-        match builder.nodes.first() {
+        match nodes.first() {
             None => {}
             Some(root) if root.leaf => {
                 selector.single = Some((root.second_or_light as usize, prepared[0]));
             }
             Some(_) => {
-                let tree = collapse(&builder.nodes, &prepared, lights.len());
+                let tree = collapse(&nodes, &prepared, lights.len());
                 selector.nodes = tree.nodes;
                 selector.parent = tree.parent;
                 selector.leaf_of = tree.leaf_of;
