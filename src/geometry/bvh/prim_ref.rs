@@ -105,15 +105,21 @@ impl Binning {
         let at = (c - self.min) * self.scale;
         #[cfg(target_arch = "x86_64")]
         {
-            use std::arch::x86_64::{_mm_cvttps_epi32, _mm_storeu_si128};
-            // Clamped as floats first (`maxps` returns its second operand for a NaN, so
-            // a NaN lands in bin 0), then truncated in one instruction: the bins the
+            use std::arch::x86_64::{
+                _mm_cvttps_epi32, _mm_max_ps, _mm_min_ps, _mm_set1_ps, _mm_setzero_ps,
+                _mm_storeu_si128,
+            };
+            // Clamped as floats first, then truncated in one instruction: the bins the
             // portable branch's saturating casts give, without their per-lane checks.
-            let last = (BIN_COUNT - 1) as f32;
-            let at = at.max(Vec3A::ZERO).min(Vec3A::splat(last));
+            // `maxps` returns its second operand when either is a NaN, so a NaN lands in
+            // bin 0 (written with the intrinsics: glam leaves its NaN rule unspecified).
             let mut lanes = [0i32; 4];
             // SAFETY: SSE2 is part of the x86-64 baseline; `lanes` holds 16 bytes.
-            unsafe { _mm_storeu_si128(lanes.as_mut_ptr().cast(), _mm_cvttps_epi32(at.into())) };
+            unsafe {
+                let at = _mm_max_ps(at.into(), _mm_setzero_ps());
+                let at = _mm_min_ps(at, _mm_set1_ps((BIN_COUNT - 1) as f32));
+                _mm_storeu_si128(lanes.as_mut_ptr().cast(), _mm_cvttps_epi32(at));
+            }
             [lanes[0], lanes[1], lanes[2]].map(|b| b as usize)
         }
         #[cfg(not(target_arch = "x86_64"))]
@@ -162,10 +168,17 @@ mod tests {
                 assert_eq!(binning.bins(c), expected, "{c:?}");
             }
         }
-        // Bins of a real node: spread centroids, a flat axis (infinite scale).
+        // Every 65 537th bit pattern (NaNs, infinities, denormals, both signs included).
+        for k in 0..=(u32::MAX / 65_537) {
+            let x = f32::from_bits(k.wrapping_mul(65_537));
+            let c = Vec3A::new(x, -x, x * 16.0);
+            assert_eq!(binning.bins(c), [c.x, c.y, c.z].map(reference), "{c:?}");
+        }
+        // Bins of a real node: spread centroids, an axis one ulp wide (scale ≈ 7·10⁷) and
+        // a flat one (infinite scale).
         let node = Aabb {
             min: Vec3::new(-2.0, 1.0, 3.0),
-            max: Vec3::new(5.0, 1.0, 3.0 + 1e-30),
+            max: Vec3::new(5.0, 1.0, 3.0f32.next_up()),
         };
         let binning = Binning::new(&node);
         for i in 0..=1000 {

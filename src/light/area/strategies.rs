@@ -190,17 +190,18 @@ pub fn sampling_summary(lights: &[Light], sampling: Option<LightSampling>) -> St
     let mut counts = [[0usize; 2]; EmitterKind::ALL.len()];
     let (mut points, mut environments) = (0, 0);
     for l in lights {
-        match (l, EmitterKind::of_light(l)) {
-            (_, Some(kind)) => {
+        match l {
+            Light::Point(_) => points += 1,
+            Light::Environment(_) => environments += 1,
+            Light::Area(_) | Light::Polygon(_) => {
+                let kind = EmitterKind::of_light(l).expect("area lights and polygons have a kind");
                 let at = EmitterKind::ALL
                     .iter()
                     .position(|&k| k == kind)
-                    .unwrap_or(0);
+                    .expect("ALL lists every kind");
                 let textured = matches!(l, Light::Area(a) if a.texture.is_some());
                 counts[at][usize::from(textured)] += 1;
             }
-            (Light::Point(_), None) => points += 1,
-            (_, None) => environments += 1,
         }
     }
     let mut parts = Vec::new();
@@ -254,14 +255,33 @@ mod tests {
 
     #[test]
     fn summaries_count_each_kind_once_in_the_listed_order() {
-        let scene = crate::scene::builtin::build("many-lights?n=10").expect("scene");
+        let lights = |spec: &str| crate::scene::load(spec).expect(spec).lights;
+        let many = lights("builtin:many-lights?n=10");
         assert_eq!(
-            sampling_summary(&scene.lights, Some(LightSampling::Best)),
+            sampling_summary(&many, Some(LightSampling::Best)),
             "7 spheres (solid-angle), 3 rectangles (solid-angle)"
         );
+        // Rectangles first, then textured emitters, points, an environment and spheres:
+        // the summary keeps its own order, not the lights'.
+        let (rectangles, spheres): (Vec<Light>, Vec<Light>) = many
+            .iter()
+            .cloned()
+            .partition(|l| EmitterKind::of_light(l) == Some(EmitterKind::Rectangle));
+        let mut mixed = rectangles;
+        for name in ["textured_emitter", "tent_point", "envmap_rotated"] {
+            let path = format!("{}/tests/scenes/{name}.xml", env!("CARGO_MANIFEST_DIR"));
+            mixed.extend(lights(&path));
+        }
+        mixed.extend(spheres.into_iter().take(4));
         assert_eq!(
-            sampling_summary(&scene.lights[..8], None),
-            "5 spheres, 3 rectangles"
+            sampling_summary(&mixed, Some(LightSampling::Area)),
+            "4 spheres (area), 1 textured sphere (area), 3 rectangles (area), \
+             1 textured rectangle (area), 1 textured disk (area), 2 points, 1 environment"
+        );
+        assert_eq!(
+            sampling_summary(&mixed, None),
+            "4 spheres, 1 textured sphere, 3 rectangles, 1 textured rectangle, \
+             1 textured disk, 2 points, 1 environment"
         );
         assert_eq!(sampling_summary(&[], None), "none");
     }

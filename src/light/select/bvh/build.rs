@@ -28,9 +28,15 @@ pub(super) struct BuildLight {
 /// tree is the same node for node as the sequential build's.
 const PARALLEL_MIN_LIGHTS: usize = 4096;
 
-/// Builds the binary tree over `lights` (non-empty): 2n − 1 nodes, root first, each inner
-/// node's first child right after it.
+/// Builds the binary tree over `lights` (non-empty, each with φ > 0 and a finite centroid,
+/// as [`super::BvhSelector::new`] keeps them): 2n − 1 nodes, root first, each inner node's
+/// first child right after it.
 pub(super) fn build(lights: &mut [BuildLight]) -> Vec<Node> {
+    debug_assert!(
+        lights
+            .iter()
+            .all(|l| l.bounds.phi > 0.0 && l.centroid.is_finite())
+    );
     let mut nodes = vec![Node::PLACEHOLDER; 2 * lights.len() - 1];
     build_into(&mut nodes, 0, lights, 0, PARALLEL_MIN_LIGHTS);
     nodes
@@ -88,11 +94,9 @@ fn build_into(
 /// (strictly inside the slice).
 ///
 /// Every light is binned along the three axes in one pass, and candidate splits are
-/// swept over occupied buckets only: between two occupied buckets every candidate has the
-/// same lights below and above it, hence the same cost, and the strict `<` keeps the first
-/// of them. So this finds the split a sweep over all `BUCKETS − 1` candidates finds, with
-/// at most min(n, BUCKETS) − 1 cost evaluations per axis (most nodes of a large tree hold
-/// a handful of lights).
+/// swept over occupied buckets only (see [`best_gap`]): this finds the split a sweep over
+/// all `BUCKETS − 1` candidates of every axis finds, with at most min(n, BUCKETS) − 1
+/// candidates per axis (most nodes of a large tree hold a handful of lights).
 fn split(lights: &mut [BuildLight], depth: u32) -> usize {
     let half = lights.len() / 2;
     if depth >= SAOH_MAX_DEPTH {
@@ -102,66 +106,19 @@ fn split(lights: &mut [BuildLight], depth: u32) -> usize {
         .iter()
         .fold(Aabb::EMPTY, |b, l| b.union(l.bounds.aabb));
     let centroids = lights.iter().fold(Aabb::EMPTY, |b, l| b.grow(l.centroid));
-    let (lo, hi) = (centroids.min, centroids.max);
-    let mut axes = [0usize; 3];
-    let mut n_axes = 0;
-    for axis in 0..3 {
-        if hi[axis] > lo[axis] {
-            axes[n_axes] = axis;
-            n_axes += 1;
-        }
-    }
-    let axes = &axes[..n_axes];
-    let mut buckets = [[LightBounds::EMPTY; BUCKETS]; 3];
-    let mut counts = [[0usize; BUCKETS]; 3];
-    let (lo3, span3) = (Vec3A::from(lo), Vec3A::from(hi - lo));
-    for l in lights.iter() {
-        // The three axes' positions in one SIMD pass: `bucket`'s operations, lane by lane.
-        let t = ((Vec3A::from(l.centroid) - lo3) / span3 * BUCKETS as f32).to_array();
-        for &axis in axes {
-            // t ∈ [0, BUCKETS]: truncating through i32 is `as usize` there, and cheaper.
-            let b = (t[axis] as i32 as usize).min(BUCKETS - 1);
-            counts[axis][b] += 1;
-            // An empty bucket has φ = 0, which `union` treats as no bounds at all.
-            buckets[axis][b] = buckets[axis][b].union(&l.bounds);
-        }
-    }
+    let map = BucketMap::new(&centroids);
+    let bins = Bins::of(lights, &map);
     let mut measure = ConeMeasure::default();
     let mut best: Option<(f32, usize, usize)> = None; // (cost, axis, first bucket above)
-    for &axis in axes {
-        let mut occupied = [0usize; BUCKETS];
-        let mut m = 0;
-        for (k, &count) in counts[axis].iter().enumerate() {
-            if count > 0 {
-                occupied[m] = k;
-                m += 1;
-            }
-        }
-        // The bounds below and above every gap between occupied buckets, by one sweep
-        // each way (O(BUCKETS) unions per node, not O(BUCKETS²)).
-        let mut below = [LightBounds::EMPTY; BUCKETS + 1];
-        let mut above = [LightBounds::EMPTY; BUCKETS + 1];
-        for i in 0..m {
-            below[i + 1] = below[i].union(&buckets[axis][occupied[i]]);
-            let j = m - 1 - i;
-            above[j] = buckets[axis][occupied[j]].union(&above[j + 1]);
-        }
-        // Gap i follows the i-th occupied bucket; its first candidate is that bucket + 1.
-        for i in 1..m {
-            let cost = cost(&below[i], &bounds, axis, &mut measure)
-                + cost(&above[i], &bounds, axis, &mut measure);
-            if cost.is_finite() && best.is_none_or(|(c, _, _)| cost < c) {
-                best = Some((cost, axis, occupied[i - 1] + 1));
-            }
-        }
+    for &axis in map.axes() {
+        best_gap(&bins, axis, &bounds, &mut measure, &mut best);
     }
     let Some((_, axis, s)) = best else {
         return half;
     };
-    let (lo, hi) = (centroids.min[axis], centroids.max[axis]);
     let mut mid = 0;
     for i in 0..lights.len() {
-        if bucket(lights[i].centroid[axis], lo, hi) < s {
+        if map.buckets(lights[i].centroid)[axis] < s {
             lights.swap(i, mid);
             mid += 1;
         }
@@ -173,9 +130,111 @@ fn split(lights: &mut [BuildLight], depth: u32) -> usize {
     }
 }
 
-/// Bucket of coordinate `x` in [lo, hi].
-fn bucket(x: f32, lo: f32, hi: f32) -> usize {
-    (((x - lo) / (hi - lo) * BUCKETS as f32) as usize).min(BUCKETS - 1)
+/// Where centroids fall among a node's buckets: ⌊(c − lo)/(hi − lo) · BUCKETS⌋ per axis,
+/// the three axes in SSE lanes (each lane the scalar operations). The binning and the
+/// partition both use it, so they agree on every light.
+struct BucketMap {
+    lo: Vec3A,
+    span: Vec3A,
+    /// The axes along which the centroids spread (hi > lo), in order.
+    axes: [usize; 3],
+    axis_count: usize,
+}
+
+impl BucketMap {
+    fn new(centroids: &Aabb) -> BucketMap {
+        let (lo, hi) = (centroids.min, centroids.max);
+        let mut axes = [0; 3];
+        let mut axis_count = 0;
+        for axis in 0..3 {
+            if hi[axis] > lo[axis] {
+                axes[axis_count] = axis;
+                axis_count += 1;
+            }
+        }
+        BucketMap {
+            lo: lo.into(),
+            span: (hi - lo).into(),
+            axes,
+            axis_count,
+        }
+    }
+
+    fn axes(&self) -> &[usize] {
+        &self.axes[..self.axis_count]
+    }
+
+    /// The buckets of centroid `c` (only meaningful along [`BucketMap::axes`]).
+    #[inline]
+    fn buckets(&self, c: Vec3) -> [usize; 3] {
+        let t = (Vec3A::from(c) - self.lo) / self.span * BUCKETS as f32;
+        // Along a spread axis t ∈ [0, BUCKETS] (lo ≤ c ≤ hi, rounding is monotone) or NaN
+        // (hi − lo overflowed): `as i32` truncates the former and sends NaN to 0, as
+        // `as usize` would, in fewer instructions.
+        t.to_array().map(|x| (x as i32 as usize).min(BUCKETS - 1))
+    }
+}
+
+/// The lights of a node binned along every spread axis: each bucket's merged bounds
+/// (φ = 0 where empty, which [`LightBounds::union`] treats as no bounds) and count.
+struct Bins {
+    bounds: [[LightBounds; BUCKETS]; 3],
+    counts: [[usize; BUCKETS]; 3],
+}
+
+impl Bins {
+    fn of(lights: &[BuildLight], map: &BucketMap) -> Bins {
+        let mut bins = Bins {
+            bounds: [[LightBounds::EMPTY; BUCKETS]; 3],
+            counts: [[0; BUCKETS]; 3],
+        };
+        for l in lights {
+            let at = map.buckets(l.centroid);
+            for &axis in map.axes() {
+                let b = at[axis];
+                bins.counts[axis][b] += 1;
+                bins.bounds[axis][b] = bins.bounds[axis][b].union(&l.bounds);
+            }
+        }
+        bins
+    }
+}
+
+/// Updates `best` (cost, axis, first bucket above) with the SAOH's candidates along
+/// `axis`. Only gaps between occupied buckets are candidates: every split inside one gap
+/// has the same lights on each side, hence the same cost and the same partition, and a
+/// sweep over all candidates would keep the first of them (strict `<`), which is the one
+/// recorded here. The bounds below and above each gap come from one sweep each way.
+fn best_gap(
+    bins: &Bins,
+    axis: usize,
+    parent: &Aabb,
+    measure: &mut ConeMeasure,
+    best: &mut Option<(f32, usize, usize)>,
+) {
+    let mut occupied = [0usize; BUCKETS];
+    let mut m = 0;
+    for (k, &count) in bins.counts[axis].iter().enumerate() {
+        if count > 0 {
+            occupied[m] = k;
+            m += 1;
+        }
+    }
+    let bucket = |i: usize| &bins.bounds[axis][occupied[i]];
+    let mut below = [LightBounds::EMPTY; BUCKETS + 1];
+    let mut above = [LightBounds::EMPTY; BUCKETS + 1];
+    for i in 0..m {
+        below[i + 1] = below[i].union(bucket(i));
+        let j = m - 1 - i;
+        above[j] = bucket(j).union(&above[j + 1]);
+    }
+    // Gap i follows the i-th occupied bucket; its first candidate is that bucket + 1.
+    for i in 1..m {
+        let cost = cost(&below[i], parent, axis, measure) + cost(&above[i], parent, axis, measure);
+        if cost.is_finite() && best.is_none_or(|(c, _, _)| cost < c) {
+            *best = Some((cost, axis, occupied[i - 1] + 1));
+        }
+    }
 }
 
 /// SAOH cost of one side: φ · M_Ω · K_r · surface area, with M_Ω from [`ConeMeasure`]
@@ -268,9 +327,14 @@ mod tests {
             .collect()
     }
 
+    /// Bucket of coordinate `x` in [lo, hi], one axis at a time.
+    fn bucket(x: f32, lo: f32, hi: f32) -> usize {
+        (((x - lo) / (hi - lo) * BUCKETS as f32) as usize).min(BUCKETS - 1)
+    }
+
     /// The SAOH split as the lecture would write it: every candidate of every axis, each
     /// side's bounds merged afresh (in the order the sweeps merge them), M_Ω computed each
-    /// time; same partition rule.
+    /// time, buckets one axis at a time; same partition rule.
     fn split_reference(lights: &mut [BuildLight]) -> usize {
         let bounds = lights
             .iter()
@@ -328,11 +392,22 @@ mod tests {
         }
     }
 
+    /// Runs `split` and the reference on copies of `lights`; both must give the same
+    /// partition. Returns where the second part starts.
+    fn check_split(lights: &[BuildLight]) -> usize {
+        let (mut ours, mut reference) = (lights.to_vec(), lights.to_vec());
+        let mid = split(&mut ours, 0);
+        let n = lights.len();
+        assert_eq!(mid, split_reference(&mut reference), "{n} lights");
+        let order = |v: &[BuildLight]| v.iter().map(|l| l.index).collect::<Vec<_>>();
+        assert_eq!(order(&ours), order(&reference), "{n} lights");
+        mid
+    }
+
     #[test]
     fn splits_match_the_sweep_over_every_candidate() {
         // Small clusters (most of a tree's nodes, and most buckets empty), clusters whose
-        // centroids coincide along some axes, and large ones.
-        let mut differing_axes = 0;
+        // centroids coincide along an axis, and large ones.
         for (k, count) in (2..40).chain([100, 1000]).enumerate() {
             for side in [0.5, 20.0] {
                 let mut lights = random_lights(count, side, 0x9e37_79b9 + k as u64);
@@ -340,16 +415,43 @@ mod tests {
                     for l in &mut lights {
                         l.centroid.y = 1.0;
                     }
-                    differing_axes += 1;
                 }
-                let mut reference = lights.clone();
-                let mid = split(&mut lights, 0);
-                assert_eq!(mid, split_reference(&mut reference), "{count} lights");
-                let order = |v: &[BuildLight]| v.iter().map(|l| l.index).collect::<Vec<_>>();
-                assert_eq!(order(&lights), order(&reference), "{count} lights");
+                check_split(&lights);
             }
         }
-        assert!(differing_axes > 0);
+    }
+
+    #[test]
+    fn exact_ties_go_to_the_first_gap_and_infinite_costs_are_skipped() {
+        // Three equal unit cubes at x = 0, 2, 4 facing every way: splitting after the
+        // first or after the second costs exactly the same (the boxes' extents are exact),
+        // and the first gap wins.
+        let cube = |index: usize, x: f32| {
+            let bounds = LightBounds {
+                aabb: Aabb {
+                    min: Vec3::new(x, 0.0, 0.0),
+                    max: Vec3::new(x + 1.0, 1.0, 1.0),
+                },
+                phi: 1.0,
+                w: Vec3::Z,
+                cos_theta_o: -1.0,
+                cos_theta_e: 0.0,
+                two_sided: false,
+            };
+            BuildLight {
+                index,
+                bounds,
+                centroid: bounds.aabb.centroid(),
+            }
+        };
+        let row = [cube(0, 0.0), cube(1, 2.0), cube(2, 4.0)];
+        assert_eq!(check_split(&row), 1);
+        // A light whose φ makes every side that holds it cost ∞: no finite candidate, so
+        // the count median.
+        let mut huge = row.to_vec();
+        huge.push(cube(3, 6.0));
+        huge[1].bounds.phi = 3e38;
+        assert_eq!(check_split(&huge), 2);
     }
 
     #[test]
@@ -362,6 +464,22 @@ mod tests {
         };
         let (sequential, parallel) = (build(usize::MAX), build(64));
         assert_eq!(sequential.len(), 2 * lights.len() - 1);
+        // Every inner node bounds its two children, whose slots follow the layout, and
+        // every light is in exactly one leaf.
+        let mut seen = vec![0; lights.len()];
+        for (k, node) in sequential.iter().enumerate() {
+            if node.leaf {
+                seen[node.second_or_light as usize] += 1;
+            } else {
+                let (first, second) = (
+                    &sequential[k + 1],
+                    &sequential[node.second_or_light as usize],
+                );
+                assert!(node.second_or_light as usize > k + 1, "node {k}");
+                assert_eq!(node.bounds, first.bounds.union(&second.bounds), "node {k}");
+            }
+        }
+        assert!(seen.iter().all(|&c| c == 1));
         assert_eq!(sequential.len(), parallel.len());
         for (k, (s, p)) in sequential.iter().zip(&parallel).enumerate() {
             assert!(

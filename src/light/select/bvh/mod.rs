@@ -32,11 +32,12 @@ struct Node {
 }
 
 impl Node {
-    /// What a slot holds before the build fills it.
+    /// What a slot holds before the build fills it: an inner node whose second child is
+    /// out of range, so a slot left unfilled fails loudly instead of naming light 0.
     const PLACEHOLDER: Node = Node {
         bounds: LightBounds::EMPTY,
-        second_or_light: 0,
-        leaf: true,
+        second_or_light: u32::MAX,
+        leaf: false,
     };
 }
 
