@@ -62,11 +62,12 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
         }
     }
     let pool = super::args::thread_pool(args.threads)?;
-    let scenes = args
-        .scenes
-        .iter()
-        .map(|s| scene::load(s).map_err(|e| CliError::input(e.to_string())))
-        .collect::<Result<Vec<_>, _>>()?;
+    let scenes = pool.install(|| {
+        args.scenes
+            .iter()
+            .map(|s| scene::load(s).map_err(|e| CliError::input(e.to_string())))
+            .collect::<Result<Vec<_>, _>>()
+    })?;
     let mut table = format!(
         "lightlab {} bench, {} threads, median of {} runs\n\n{TABLE_HEADER}\n",
         env!("CARGO_PKG_VERSION"),

@@ -73,7 +73,9 @@ pub fn run(args: &ReferenceArgs) -> Result<(), CliError> {
         }
         _ => {}
     }
-    let scene = args.file.load(&args.scene)?;
+    // `--threads` bounds the load too (BVH builds and material tables run in parallel).
+    let pool = super::args::thread_pool(args.threads)?;
+    let scene = pool.install(|| args.file.load(&args.scene))?;
     let settings = args.strategy.settings(&scene)?;
     install_stop_handler();
     let bar = ProgressBar::new_spinner();
@@ -87,7 +89,6 @@ pub fn run(args: &ReferenceArgs) -> Result<(), CliError> {
             e.mean_rel_error, e.pixel_rel_error
         ))
     };
-    let pool = super::args::thread_pool(args.threads)?;
     let r = pool.install(|| render_reference(&scene, &settings, &target, &STOP, &progress));
     bar.finish_and_clear();
     let out = &r.output;

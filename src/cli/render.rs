@@ -113,7 +113,9 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
         )));
     }
     let spec = args.scene.as_deref().unwrap_or(DEFAULT_SCENE);
-    let scene = args.file.load(spec)?;
+    // `--threads` bounds the load too (BVH builds and material tables run in parallel).
+    let pool = super::args::thread_pool(args.threads)?;
+    let scene = pool.install(|| args.file.load(spec))?;
     let settings = args.strategy.settings(&scene)?;
     let budget = match args.time {
         None => Budget::Spp(settings.spp),
@@ -127,7 +129,6 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
         }
         Some(t) => super::compare::budget(None, Some(t))?,
     };
-    let pool = super::args::thread_pool(args.threads)?;
     install_stop_handler();
     let camera = settings.camera(&scene);
     let (first, last) = settings.pass.sample_range(settings.spp);
