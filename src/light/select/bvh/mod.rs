@@ -13,6 +13,7 @@
 //! per level (BENCHMARKS.md, session 8).
 
 mod build;
+mod saoh;
 mod wide;
 
 use build::BuildLight;
