@@ -27,6 +27,7 @@
 use std::time::Instant;
 
 use glam::{Vec3, Vec3A};
+use lightlab::geometry::bvh::PACKET;
 use lightlab::geometry::bvh::bench_mesh::{BenchRays, bench_mesh, bench_rays};
 use lightlab::geometry::{Ray, TriangleSet};
 use obvhs::cwbvh::builder::build_cwbvh_from_tris;
@@ -118,6 +119,31 @@ fn mrays<T: Sync>(rays: &[T], threads: usize, trace: impl Fn(&T) -> bool + Sync)
         std::hint::black_box(hits);
     });
     rays.len() as f64 / seconds / 1e6
+}
+
+/// Mrays/s of closest-hit packets of eight consecutive primary rays (neighbouring pixels
+/// of a row, as `benches/embree_packets.c` groups them for `rtcIntersect8`) on a pool of
+/// `threads` threads (median of `RUNS`).
+fn packet_mrays(set: &TriangleSet, packets: &[[Ray; PACKET]], threads: usize) -> f64 {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("thread pool");
+    let t_max = [f32::INFINITY; PACKET];
+    let seconds = median_seconds(|| {
+        let hits: usize = pool.install(|| {
+            packets
+                .par_chunks(4096 / PACKET)
+                .map(|c| {
+                    c.iter()
+                        .map(|p| set.closest_hit_packet(p, &t_max).iter().flatten().count())
+                        .sum::<usize>()
+                })
+                .sum()
+        });
+        std::hint::black_box(hits);
+    });
+    (packets.len() * PACKET) as f64 / seconds / 1e6
 }
 
 /// Rays on which the two closest-hit answers differ (hit vs miss, or t by more than 1e-4
@@ -232,6 +258,19 @@ fn main() {
             our_build,
             &|r| ours.closest_hit(r, f32::INFINITY).is_some(),
             &|(r, t)| ours.any_hit(r, *t),
+        );
+        let packets: Vec<[Ray; PACKET]> = rays
+            .primary
+            .chunks_exact(PACKET)
+            .map(|c| std::array::from_fn(|l| c[l]))
+            .collect();
+        let p: Vec<f64> = [1, all_threads]
+            .iter()
+            .map(|&t| packet_mrays(&ours, &packets, t))
+            .collect();
+        println!(
+            "| {name} | lightlab BVH4, packets of {PACKET} (coherent) | | {:.2} | {:.2} | | |",
+            p[0], p[1]
         );
         row(
             "obvhs CWBVH (medium_build)",

@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 
-use super::bvh::{Bvh, PADDING};
+use super::bvh::{Bvh, PACKET, PADDING};
 use super::hit::{NO_LIGHT, SurfaceHit};
 use super::leaf_blocks::{LeafBlocks, wants_blocks};
 use super::mesh::Mesh;
@@ -147,6 +147,44 @@ impl Geometry {
             }),
         }?;
         self.surface_hit(prim, ray, &last?)
+    }
+
+    /// [`Geometry::intersect`] for a packet of rays traced together (see
+    /// [`Bvh::closest_hit_packet`]): ray `lane` in (0, t_max[lane]); lanes whose t_max is
+    /// not positive take no part and get `None`. Each hit is at the single-ray query's
+    /// distance; of primitives hit at exactly that distance the other one may be found.
+    #[inline]
+    pub fn intersect_packet(
+        &self,
+        rays: &[Ray; PACKET],
+        t_max: &[f32; PACKET],
+    ) -> [Option<SurfaceHit>; PACKET] {
+        // As in `intersect`: the last hit a lane's leaves report is its closest.
+        let mut last = [None; PACKET];
+        let found = match &self.blocks {
+            Some(blocks) => self
+                .bvh
+                .closest_hit_packet(rays, t_max, |lane, first, _, r, t| {
+                    let (prim, hit) = blocks.closest_hit(&self.prims, first, r, t)?;
+                    last[lane] = Some(hit);
+                    Some((prim, hit.t))
+                }),
+            None => self
+                .bvh
+                .closest_hit_packet(rays, t_max, |lane, first, count, r, mut t| {
+                    let mut best = None;
+                    for prim in first..first + count {
+                        let shape = &self.prims[prim as usize].shape;
+                        if let Some(hit) = shape.intersect(r, t).filter(|h| h.t < t) {
+                            t = hit.t;
+                            last[lane] = Some(hit);
+                            best = Some((prim, hit.t));
+                        }
+                    }
+                    best
+                }),
+        };
+        std::array::from_fn(|l| self.surface_hit(found[l]?.0, &rays[l], &last[l]?))
     }
 
     /// What `ray` meets first, as direct lighting asks it of a BSDF-sampled ray: the

@@ -145,11 +145,26 @@ impl Estimator {
         src: &mut impl Uniform,
         optimal: Option<&RefCell<OptimalPixel>>,
     ) -> Spectrum {
-        let Some(hit) = scene.geometry.intersect(ray, f32::INFINITY) else {
+        let hit = scene.geometry.intersect(ray, f32::INFINITY);
+        self.radiance_from(scene, ray, hit.as_ref(), src, optimal)
+    }
+
+    /// [`Estimator::radiance_in`] given the camera ray's closest hit `hit` (`None`: it
+    /// escapes), found by the caller (the renderer traces camera rays in packets).
+    #[inline]
+    pub fn radiance_from(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        hit: Option<&SurfaceHit>,
+        src: &mut impl Uniform,
+        optimal: Option<&RefCell<OptimalPixel>>,
+    ) -> Spectrum {
+        let Some(hit) = hit else {
             return scene.escaped(ray.d.normalize()); // the background: the environment
         };
         let w_out = -ray.d.normalize();
-        emitted_at(scene, &hit, w_out) + self.direct_probed(scene, &hit, w_out, src, None, optimal)
+        emitted_at(scene, hit, w_out) + self.direct_probed(scene, hit, w_out, src, None, optimal)
     }
 
     /// One sample of reflected direct light L_out(x, ω_out) at a surface hit.

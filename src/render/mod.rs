@@ -1,6 +1,7 @@
 //! Rendering: tiles in parallel (rayon), one sampler stream per (seed, pixel, sample),
 //! rounds of samples so a stop request still leaves a whole image, and a progress bar.
 
+mod packets;
 mod settings;
 mod spatial;
 mod splat;
@@ -8,20 +9,17 @@ mod splat;
 pub use crate::settings::{Pass, SampleBlock};
 pub use settings::RenderSettings;
 
-use std::cell::RefCell;
 use std::ops::Range;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
-use glam::Vec2;
 use rayon::prelude::*;
 
 use crate::image::{Film, PixelStats};
 use crate::integrator::{Estimator, EstimatorKind, MisHeuristic, OptimalPixel};
-use crate::math::Spectrum;
-use crate::sampling::{Sampler, Uniform};
 use crate::scene::Scene;
+use packets::TileSamples;
 
 /// Side of a square tile in pixels.
 pub const TILE: u32 = 16;
@@ -123,26 +121,13 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
     };
     for window in rounds.windows(2) {
         let (s0, s1) = (window[0], window[1]);
-        let sample = |x: u32, y: u32, pixel_key: u64, s: u32| -> (Vec2, Spectrum) {
-            let mut sampler = Sampler::for_pixel(settings.sampler, pixel_key, s, settings.spp);
-            let p = Vec2::new(x as f32, y as f32) + sampler.next_2d();
-            let ray = camera.ray(p);
-            let l = match optimal.get((y * w + x) as usize) {
-                Some(cell) => {
-                    let mut guard = cell.lock().unwrap_or_else(|e| e.into_inner());
-                    let state = RefCell::new(*guard);
-                    let l = estimator.radiance_in(scene, &ray, &mut sampler, Some(&state));
-                    *guard = state.into_inner();
-                    l
-                }
-                None => estimator.radiance(scene, &ray, &mut sampler),
-            };
-            if l.is_finite() {
-                (p, l)
-            } else {
-                invalid.fetch_add(1, Ordering::Relaxed);
-                (p, Spectrum::ZERO)
-            }
+        let job = packets::CameraPackets {
+            scene,
+            settings,
+            camera: &camera,
+            estimator: &estimator,
+            optimal: &optimal,
+            invalid: &invalid,
         };
         if settings.ris_spatial > 0 {
             let job = spatial::Job {
@@ -154,7 +139,7 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
             };
             spatial::round(&mut film, &tiles, s0..s1, &job);
         } else if settings.filter.is_pixel_box() {
-            round_pixel_box(&mut film, &tiles, s0..s1, settings.seed, &sample);
+            round_pixel_box(&mut film, &tiles, s0..s1, settings.seed, &job);
         } else {
             splat::round_splatted(
                 &mut film,
@@ -162,7 +147,7 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
                 s0..s1,
                 settings.seed,
                 settings.filter,
-                &sample,
+                &job,
             );
         }
         for cell in &optimal {
@@ -195,12 +180,12 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
 
 /// One round with the one-pixel box filter: each pixel continues its own Welford
 /// statistics with its samples `samples`.
-fn round_pixel_box<F: Fn(u32, u32, u64, u32) -> (Vec2, Spectrum) + Sync>(
+fn round_pixel_box(
     film: &mut Film,
     tiles: &[Tile],
     samples: Range<u32>,
     seed: u64,
-    sample: &F,
+    job: &impl TileSamples,
 ) {
     let w = film.width;
     let results: Vec<Vec<PixelStats>> = tiles
@@ -209,14 +194,13 @@ fn round_pixel_box<F: Fn(u32, u32, u64, u32) -> (Vec2, Spectrum) + Sync>(
             let mut out = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
             for y in y0..y1 {
                 for x in x0..x1 {
-                    let mut stats = *film.pixel(x, y);
-                    let key = Sampler::pixel_key(seed, (y * w + x) as u64);
-                    for s in samples.clone() {
-                        stats.add(sample(x, y, key, s).1);
-                    }
-                    out.push(stats);
+                    out.push(*film.pixel(x, y));
                 }
             }
+            let tile = (x0, y0, x1, y1);
+            job.run(tile, samples.clone(), (seed, w), &mut |x, y, _, l| {
+                out[((y - y0) * (x1 - x0) + x - x0) as usize].add(l);
+            });
             out
         })
         .collect();

@@ -9,6 +9,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use glam::Vec2;
 use rayon::prelude::*;
 
+use super::packets::OneByOne;
 use super::splat::round_splatted;
 use super::{RenderSettings, Tile, round_pixel_box};
 use crate::image::Film;
@@ -63,7 +64,8 @@ pub(super) fn round(film: &mut Film, tiles: &[Tile], samples: Range<u32>, job: &
                 *out = second_pass(job, &primaries, &reservoirs, per_pixel, (x, y), (w, h));
             }
         });
-        let result = |x: u32, y: u32, _: u64, _: u32| results[y as usize * w + x as usize];
+        let result =
+            OneByOne(|x: u32, y: u32, _: u64, _: u32| results[y as usize * w + x as usize]);
         let settings = job.settings;
         if settings.filter.is_pixel_box() {
             round_pixel_box(film, tiles, s..s + 1, settings.seed, &result);

@@ -9,20 +9,20 @@ use glam::{DVec3, Vec2};
 use rayon::prelude::*;
 
 use super::Tile;
+use super::packets::TileSamples;
 use crate::image::filter::{FOOTPRINT_LANES, PreparedFilter};
 use crate::image::{Film, Filter, PixelStats};
 use crate::math::Spectrum;
-use crate::sampling::Sampler;
 
 /// One round with a filter wider than the one-pixel box: the samples `samples` of every
 /// pixel, splatted with the filter's separable weights.
-pub(super) fn round_splatted<F: Fn(u32, u32, u64, u32) -> (Vec2, Spectrum) + Sync>(
+pub(super) fn round_splatted(
     film: &mut Film,
     tiles: &[Tile],
     samples: Range<u32>,
     seed: u64,
     filter: Filter,
-    sample: &F,
+    job: &impl TileSamples,
 ) {
     let (w, h) = (film.width, film.height);
     let reach = filter.radius().ceil() as u32;
@@ -35,15 +35,14 @@ pub(super) fn round_splatted<F: Fn(u32, u32, u64, u32) -> (Vec2, Spectrum) + Syn
             let (bx1, by1) = ((x1 + reach).min(w), (y1 + reach).min(h));
             let bw = bx1 - bx0;
             let mut buf = vec![Splats::default(); (bw * (by1 - by0)) as usize];
-            for y in y0..y1 {
-                for x in x0..x1 {
-                    let key = Sampler::pixel_key(seed, (y * w + x) as u64);
-                    for s in samples.clone() {
-                        let (p, l) = sample(x, y, key, s);
-                        splat(&mut buf, (bx0, by0, bw), &filter, (w, h), p, l);
-                    }
-                }
-            }
+            job.run(
+                (x0, y0, x1, y1),
+                samples.clone(),
+                (seed, w),
+                &mut |_, _, p, l| {
+                    splat(&mut buf, (bx0, by0, bw), &filter, (w, h), p, l);
+                },
+            );
             ((bx0, by0, bx1, by1), buf)
         })
         .collect();

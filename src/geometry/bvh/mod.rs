@@ -18,6 +18,7 @@
 mod build;
 mod collapse;
 pub mod node;
+mod packet;
 mod prim_ref;
 mod traverse;
 
@@ -27,6 +28,7 @@ pub mod triangle_set;
 #[cfg(test)]
 mod tests;
 
+pub use packet::PACKET;
 pub use triangle_set::TriangleSet;
 
 use crate::geometry::{Aabb, Ray};
@@ -158,6 +160,26 @@ impl Bvh {
             return None;
         }
         traverse::closest_hit(&self.nodes, self.depth, ray, t_max, leaf)
+    }
+
+    /// Closest hits of a packet of [`PACKET`] rays, traversed together (see the `packet`
+    /// module): ray `lane` is sought in (0, t_max[lane]); a lane whose ray is not finite
+    /// or whose t_max is not positive takes no part (its answer is `None`).
+    /// `leaf(lane, first, count, ray, t_closest)` tests one ray against a leaf as
+    /// [`Bvh::closest_hit_leaf`]'s callback does. Each answer has the distance of the
+    /// single-ray query's; between primitives hit at exactly the same distance the other
+    /// one may win.
+    #[inline]
+    pub fn closest_hit_packet<F: FnMut(usize, u32, u32, &Ray, f32) -> Option<(u32, f32)>>(
+        &self,
+        rays: &[Ray; PACKET],
+        t_max: &[f32; PACKET],
+        leaf: F,
+    ) -> [Option<(u32, f32)>; PACKET] {
+        if self.nodes.is_empty() {
+            return [None; PACKET];
+        }
+        packet::closest_hit(&self.nodes, self.depth, rays, t_max, leaf)
     }
 
     /// Any hit in (0, t_max), for shadow rays: `occludes(prim, ray, t_max)` (with `prim` in

@@ -130,17 +130,18 @@ impl WideNode {
 }
 
 /// 1 + 2γ₃ with γₙ = nε/(1 − nε), ε = 2⁻²⁴ (Ize 2013; Pharr et al., pbrt-v4 §6.8).
-const ROBUST_EXIT_SCALE: f32 = 1.0 + 2.0 * (3.0 * 5.960_464_5e-8 / (1.0 - 3.0 * 5.960_464_5e-8));
+pub(super) const ROBUST_EXIT_SCALE: f32 =
+    1.0 + 2.0 * (3.0 * 5.960_464_5e-8 / (1.0 - 3.0 * 5.960_464_5e-8));
 
 /// `a > b ? a : b`, written so it compiles to one `maxps` lane.
 #[inline(always)]
-fn max(a: f32, b: f32) -> f32 {
+pub(super) fn max(a: f32, b: f32) -> f32 {
     if a > b { a } else { b }
 }
 
 /// `a < b ? a : b`, written so it compiles to one `minps` lane.
 #[inline(always)]
-fn min(a: f32, b: f32) -> f32 {
+pub(super) fn min(a: f32, b: f32) -> f32 {
     if a < b { a } else { b }
 }
 

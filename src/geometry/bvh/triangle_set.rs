@@ -4,7 +4,7 @@
 
 use glam::Vec3;
 
-use super::{BLOCK, Bvh};
+use super::{BLOCK, Bvh, PACKET};
 use crate::geometry::triangle::TriangleHit;
 use crate::geometry::triangle4::Triangle4;
 use crate::geometry::{Aabb, Ray};
@@ -65,6 +65,26 @@ impl TriangleSet {
                 Some((block.ids[h.lane], h.hit.t))
             })?;
         Some((id, hit?))
+    }
+
+    /// [`TriangleSet::closest_hit`] for a packet of rays traced together (see
+    /// [`Bvh::closest_hit_packet`]; lanes with t_max ≤ 0 take no part).
+    #[inline]
+    pub fn closest_hit_packet(
+        &self,
+        rays: &[Ray; PACKET],
+        t_max: &[f32; PACKET],
+    ) -> [Option<(u32, TriangleHit)>; PACKET] {
+        let mut hits = [None; PACKET];
+        let found = self
+            .bvh
+            .closest_hit_packet(rays, t_max, |lane, first, _, ray, t_closest| {
+                let block = &self.blocks[first as usize / BLOCK];
+                let h = block.closest_hit(ray, t_closest)?;
+                hits[lane] = Some(h.hit);
+                Some((block.ids[h.lane], h.hit.t))
+            });
+        std::array::from_fn(|l| Some((found[l]?.0, hits[l]?)))
     }
 
     /// True when some triangle is hit in (0, t_max) (shadow rays).

@@ -118,3 +118,59 @@ fn leaf_blocks_answer_as_single_primitive_leaves_do() {
         "{hits} hits, {blocked} blocked, {ties} ties"
     );
 }
+
+#[test]
+fn packets_answer_as_single_rays_do_in_both_layouts() {
+    let mut rng = Rng32::new(6);
+    for use_blocks in [true, false] {
+        let scene = mixed_scene(use_blocks);
+        let (mut hits, mut ties) = (0, 0);
+        for k in 0..3000 {
+            // Camera-like packets: one origin, directions in a narrow cone; every fifth
+            // packet spread wide; some lanes out of the packet (t_max ≤ 0).
+            let o = Vec3::new(
+                rng.next_f32() * 6.0,
+                2.0 + rng.next_f32(),
+                rng.next_f32() * 6.0,
+            );
+            let aim = Vec3::new(rng.next_f32() * 6.0, 0.0, rng.next_f32() * 6.0) - o;
+            let spread = if k % 5 == 0 { 3.0 } else { 0.05 };
+            let rays: [Ray; PACKET] = std::array::from_fn(|_| {
+                let jitter = Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) - 0.5;
+                Ray::new(o, (aim.normalize() + jitter * spread).normalize())
+            });
+            let t_max: [f32; PACKET] = std::array::from_fn(|l| match (k % 3, l) {
+                (0, 3 | 6) => 0.0,
+                (1, _) => 1.0 + rng.next_f32() * 4.0,
+                _ => f32::INFINITY,
+            });
+            let packet = scene.intersect_packet(&rays, &t_max);
+            for lane in 0..PACKET {
+                let single = (t_max[lane] > 0.0)
+                    .then(|| scene.intersect(&rays[lane], t_max[lane]))
+                    .flatten();
+                let got = packet[lane];
+                assert_eq!(got.map(|h| h.t.to_bits()), single.map(|h| h.t.to_bits()));
+                if let (Some(a), Some(b)) = (got, single) {
+                    hits += 1;
+                    if a.prim != b.prim {
+                        let other = scene.prims[a.prim as usize]
+                            .shape
+                            .intersect(&rays[lane], f32::INFINITY);
+                        assert_eq!(other.map(|h| h.t), Some(a.t));
+                        ties += 1;
+                    } else {
+                        assert_eq!(
+                            (a.p, a.ng, a.uv, a.material, a.light),
+                            (b.p, b.ng, b.uv, b.material, b.light)
+                        );
+                    }
+                }
+            }
+        }
+        assert!(
+            hits > 10_000 && ties < hits / 50,
+            "{hits} hits, {ties} ties"
+        );
+    }
+}

@@ -1,0 +1,398 @@
+//! Packet traversal: eight rays walk the 4-wide tree together (Wald, Slusallek, Benthin
+//! & Wagner 2001, "Interactive Rendering with Coherent Ray Tracing"; the "hybrid" packets
+//! of Embree's `rtcIntersect8`). Each child box is tested against all eight rays at once,
+//! one ray per SIMD lane (AVX2 where the CPU has it, chosen at run time; two SSE halves
+//! otherwise), and a subtree is entered when any ray still reaches it. Coherent rays (a
+//! pixel's samples, neighbouring camera rays) share most of their path, so one node test
+//! serves eight rays; leaves are tested one active ray at a time by the caller.
+//!
+//! Every lane runs the single-ray slab test of [`WideNode::intersect`] with the same
+//! operations in the same order (the near plane picked by the sign of 1/d, the same
+//! `max`/`min` nesting, the same robust exit scale), and a lane tests a leaf whenever its
+//! box entry is within the lane's closest hit so far. So each ray finds the closest hit
+//! the single-ray query finds, at the same distance; only between primitives hit at
+//! exactly the same distance may the other one win, as the visiting order differs.
+
+use std::mem::MaybeUninit;
+
+use super::node::{ChildRef, ROBUST_EXIT_SCALE, WIDTH, WideNode, max, min};
+use crate::geometry::Ray;
+
+/// Rays per packet.
+pub const PACKET: usize = 8;
+
+/// One f32 per ray of a packet.
+type Lanes = [f32; PACKET];
+
+/// A stack entry: a child and each ray's entry distance into its box (+∞ for a ray that
+/// misses it).
+type Entry = (ChildRef, Lanes);
+
+/// Entries of the fixed-size stack; deeper trees get a heap stack.
+const STACK_SIZE: usize = 64;
+
+/// What the slab test needs of the packet, structure-of-arrays: origins, reciprocal
+/// directions and, per axis, an all-ones mask in lanes whose 1/d is negative (there the
+/// upper plane is the near one).
+struct PacketData {
+    o: [Lanes; 3],
+    inv_d: [Lanes; 3],
+    negative: [[u32; PACKET]; 3],
+}
+
+impl PacketData {
+    /// The packet's data; `valid[lane]` false gives a harmless placeholder ray (its
+    /// closest distance is −∞, so it never enters a box).
+    fn new(rays: &[Ray; PACKET], valid: &[bool; PACKET]) -> PacketData {
+        let mut data = PacketData {
+            o: [[0.0; PACKET]; 3],
+            inv_d: [[1.0; PACKET]; 3],
+            negative: [[0; PACKET]; 3],
+        };
+        for (lane, ray) in rays.iter().enumerate() {
+            if !valid[lane] {
+                continue;
+            }
+            let inv_d = ray.d.recip();
+            for axis in 0..3 {
+                data.o[axis][lane] = ray.o[axis];
+                data.inv_d[axis][lane] = inv_d[axis];
+                // As in `RayData::new`: the sign of 1/d (so −0 counts as negative).
+                data.negative[axis][lane] = if inv_d[axis] < 0.0 { u32::MAX } else { 0 };
+            }
+        }
+        data
+    }
+
+    /// Entry distance of each ray into child `c` of `node`, +∞ where the ray misses the
+    /// box within its `t_closest`: the single-ray slab test, lane by lane.
+    #[inline(always)]
+    fn entry(&self, node: &WideNode, c: usize, t_closest: &Lanes) -> Lanes {
+        let lo = [node.planes[0][c], node.planes[1][c], node.planes[2][c]];
+        let hi = [node.planes[3][c], node.planes[4][c], node.planes[5][c]];
+        let mut entry = [0.0f32; PACKET];
+        for lane in 0..PACKET {
+            let mut near = [0.0f32; 3];
+            let mut far = [0.0f32; 3];
+            for axis in 0..3 {
+                let (o, inv) = (self.o[axis][lane], self.inv_d[axis][lane]);
+                let to_lo = (lo[axis] - o) * inv;
+                let to_hi = (hi[axis] - o) * inv;
+                let m = self.negative[axis][lane];
+                near[axis] = f32::from_bits((to_hi.to_bits() & m) | (to_lo.to_bits() & !m));
+                far[axis] = f32::from_bits((to_lo.to_bits() & m) | (to_hi.to_bits() & !m));
+            }
+            // The same nesting as `WideNode::intersect`, so the same bits.
+            let t0 = max(near[0], max(near[1], max(near[2], 0.0)));
+            let t1 = min(far[0], min(far[1], min(far[2], t_closest[lane]))) * ROBUST_EXIT_SCALE;
+            entry[lane] = if t0 <= t1 { t0 } else { f32::INFINITY };
+        }
+        entry
+    }
+}
+
+/// Bit `lane` set where `entry[lane] <= t_closest[lane]`: the rays that still reach a box.
+#[inline(always)]
+fn reaching(entry: &Lanes, t_closest: &Lanes) -> u32 {
+    let mut mask = 0;
+    for lane in 0..PACKET {
+        mask |= ((entry[lane] <= t_closest[lane]) as u32) << lane;
+    }
+    mask
+}
+
+/// The smallest lane of `entry` (the packet's nearest entry, for ordering children).
+#[inline(always)]
+fn nearest(entry: &Lanes) -> f32 {
+    let mut m = entry[0];
+    for &t in &entry[1..] {
+        m = min(m, t);
+    }
+    m
+}
+
+/// Closest hits of a packet; see [`super::Bvh::closest_hit_packet`]. `nodes` must be
+/// non-empty.
+#[inline(always)]
+pub fn closest_hit<F: FnMut(usize, u32, u32, &Ray, f32) -> Option<(u32, f32)>>(
+    nodes: &[WideNode],
+    depth: usize,
+    rays: &[Ray; PACKET],
+    t_max: &Lanes,
+    mut leaf: F,
+) -> [Option<(u32, f32)>; PACKET] {
+    let mut best: [Option<u32>; PACKET] = [None; PACKET];
+    let t = closest_hit_masked(
+        nodes,
+        depth,
+        rays,
+        t_max,
+        |first, count, active, t_closest| {
+            let mut active = active;
+            while active != 0 {
+                let lane = active.trailing_zeros() as usize;
+                active &= active - 1;
+                let t = t_closest[lane];
+                if let Some((id, hit)) =
+                    leaf(lane, first, count, &rays[lane], t).filter(|h| h.1 < t)
+                {
+                    t_closest[lane] = hit;
+                    best[lane] = Some(id);
+                }
+            }
+        },
+    );
+    std::array::from_fn(|l| best[l].map(|id| (id, t[l])))
+}
+
+/// The traversal with a leaf test for the whole packet: `leaf(first, count, active,
+/// t_closest)` tests the leaf at leaf-order positions `first .. first + count` for the
+/// rays of lane mask `active` and lowers `t_closest[lane]` to each nearer hit, keeping
+/// what it hit itself. Returns each lane's final t_closest (its t_max where nothing was
+/// hit, −∞ for a lane that takes no part). `nodes` must be non-empty.
+#[inline]
+pub fn closest_hit_masked<F: FnMut(u32, u32, u32, &mut Lanes)>(
+    nodes: &[WideNode],
+    depth: usize,
+    rays: &[Ray; PACKET],
+    t_max: &Lanes,
+    leaf: F,
+) -> Lanes {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU has AVX2, checked just above.
+        return unsafe { closest_hit_avx2(nodes, depth, rays, t_max, leaf) };
+    }
+    closest_hit_lanes(nodes, depth, rays, t_max, leaf)
+}
+
+/// [`closest_hit_lanes`] compiled for AVX2: the eight lanes are one 256-bit register.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn closest_hit_avx2<F: FnMut(u32, u32, u32, &mut Lanes)>(
+    nodes: &[WideNode],
+    depth: usize,
+    rays: &[Ray; PACKET],
+    t_max: &Lanes,
+    leaf: F,
+) -> Lanes {
+    closest_hit_lanes(nodes, depth, rays, t_max, leaf)
+}
+
+/// The traversal itself, written over eight-lane arrays for the compiler to vectorise.
+/// Returns each lane's closest distance (its t_max where nothing was hit, −∞ for a lane
+/// that takes no part).
+#[inline(always)]
+fn closest_hit_lanes<F: FnMut(u32, u32, u32, &mut Lanes)>(
+    nodes: &[WideNode],
+    depth: usize,
+    rays: &[Ray; PACKET],
+    t_max: &Lanes,
+    mut leaf: F,
+) -> Lanes {
+    // A lane takes part when its ray is finite and its interval (0, t_max) is not empty;
+    // the others keep t_closest = −∞, which no box entry (≥ 0) reaches.
+    let valid: [bool; PACKET] =
+        std::array::from_fn(|l| rays[l].o.is_finite() && rays[l].d.is_finite() && t_max[l] > 0.0);
+    let mut t_closest: Lanes = std::array::from_fn(|l| {
+        if valid[l] {
+            t_max[l]
+        } else {
+            f32::NEG_INFINITY
+        }
+    });
+    if !valid.contains(&true) {
+        return t_closest;
+    }
+    let data = PacketData::new(rays, &valid);
+    let needed = (WIDTH - 1) * depth + 1;
+    let mut fixed = [MaybeUninit::<Entry>::uninit(); STACK_SIZE];
+    let mut heap = Vec::new();
+    let slots: &mut [MaybeUninit<Entry>] = if needed <= STACK_SIZE {
+        &mut fixed
+    } else {
+        heap.resize(needed, MaybeUninit::uninit());
+        &mut heap
+    };
+    // Invariant: slots[..len] are written.
+    let mut len = 0;
+    let mut current = ChildRef::inner(0);
+    let mut entry: Lanes = std::array::from_fn(|l| if valid[l] { 0.0 } else { f32::INFINITY });
+    loop {
+        if current.is_leaf() {
+            let (first, count) = current.leaf_range();
+            leaf(first, count, reaching(&entry, &t_closest), &mut t_closest);
+        } else {
+            let node = &nodes[current.0 as usize];
+            // The children some ray enters, with their entries and the nearest of them.
+            let mut hits: [(ChildRef, Lanes, f32); WIDTH] =
+                [(ChildRef(0), [0.0; PACKET], 0.0); WIDTH];
+            let mut n = 0;
+            for c in 0..WIDTH {
+                // An unused lane holds the empty box (lower bound +∞), which no ray enters.
+                if node.planes[0][c] == f32::INFINITY {
+                    continue;
+                }
+                let e = data.entry(node, c, &t_closest);
+                let near = nearest(&e);
+                if near < f32::INFINITY {
+                    // Insertion by the packet's nearest entry, farthest first.
+                    let mut at = n;
+                    while at > 0 && hits[at - 1].2 < near {
+                        hits[at] = hits[at - 1];
+                        at -= 1;
+                    }
+                    hits[at] = (node.children[c], e, near);
+                    n += 1;
+                }
+            }
+            if n > 0 {
+                // The farther children wait on the stack; the nearest is visited next.
+                for &(child, e, _) in &hits[..n - 1] {
+                    slots[len] = MaybeUninit::new((child, e));
+                    len += 1;
+                }
+                (current, entry) = (hits[n - 1].0, hits[n - 1].1);
+                continue;
+            }
+        }
+        // Pop the next entry some ray still reaches before its closest hit.
+        loop {
+            if len == 0 {
+                return t_closest;
+            }
+            len -= 1;
+            // SAFETY: slot `len` is below the old length, so it was written.
+            let (child, e) = unsafe { slots[len].assume_init() };
+            if reaching(&e, &t_closest) != 0 {
+                (current, entry) = (child, e);
+                break;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+
+    use super::*;
+    use crate::geometry::TriangleSet;
+    use crate::geometry::triangle::intersect_triangle;
+    use crate::sampling::Rng32;
+
+    /// A leaf test as the masked traversal calls it.
+    type LeafTest<'a> = dyn FnMut(u32, u32, u32, &mut Lanes) + 'a;
+
+    /// A soup of random triangles over shared vertices (rays meet shared edges) and the
+    /// vertices, indices.
+    fn soup(rng: &mut Rng32) -> (Vec<Vec3>, Vec<[u32; 3]>) {
+        let mut point = || Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 10.0;
+        let positions: Vec<Vec3> = (0..300).map(|_| point()).collect();
+        let indices = (0..2000u32)
+            .map(|i| [i % 300, (i * 7 + 1) % 300, (i * 13 + 5) % 300])
+            .collect();
+        (positions, indices)
+    }
+
+    /// Packets of several kinds: coherent (one origin, nearby directions), incoherent,
+    /// axis-parallel with ±0 components, and with lanes that take no part.
+    fn packets(rng: &mut Rng32, count: usize) -> Vec<([Ray; PACKET], Lanes)> {
+        let mut u = || rng.next_f32();
+        (0..count)
+            .map(|k| {
+                let o = Vec3::new(u(), u(), u()) * 14.0 - Vec3::splat(2.0);
+                let aim = (Vec3::new(u(), u(), u()) * 10.0 - o).normalize();
+                let rays: [Ray; PACKET] = std::array::from_fn(|_| match k % 4 {
+                    0 => Ray::new(o, aim + Vec3::new(u(), u(), u()) * 0.05),
+                    1 => {
+                        let o = Vec3::new(u(), u(), u()) * 14.0 - Vec3::splat(2.0);
+                        Ray::new(o, Vec3::new(u(), u(), u()) * 10.0 - o)
+                    }
+                    2 => {
+                        let axis = (u() * 3.0) as usize % 3;
+                        let sign = if u() < 0.5 { -1.0 } else { 1.0 };
+                        let mut d = Vec3::splat(if u() < 0.5 { -0.0 } else { 0.0 });
+                        d[axis] = sign;
+                        Ray::new(Vec3::new(u(), u(), u()) * 10.0, d)
+                    }
+                    _ => Ray::new(o, aim - Vec3::new(u(), u(), u()) * 0.3),
+                });
+                let mut t_max: Lanes =
+                    std::array::from_fn(|_| if u() < 0.5 { f32::INFINITY } else { 8.0 * u() });
+                let mut rays = rays;
+                if k % 4 == 3 {
+                    // Lanes out of the packet: a NaN ray, an empty or NaN interval.
+                    rays[1].d = Vec3::new(f32::NAN, 1.0, 0.0);
+                    t_max[2] = 0.0;
+                    t_max[5] = -1.0;
+                    t_max[6] = f32::NAN;
+                }
+                (rays, t_max)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn packets_find_the_single_ray_hits() {
+        let mut rng = Rng32::new(7);
+        let (positions, indices) = soup(&mut rng);
+        let set = TriangleSet::new(&positions, &indices);
+        let (mut hits, mut ties) = (0, 0);
+        for (rays, t_max) in packets(&mut rng, 1500) {
+            let got = set.closest_hit_packet(&rays, &t_max);
+            for lane in 0..PACKET {
+                let takes_part = rays[lane].d.is_finite() && t_max[lane] > 0.0;
+                let single = takes_part
+                    .then(|| set.closest_hit(&rays[lane], t_max[lane]))
+                    .flatten();
+                let (g, s) = (got[lane], single);
+                assert_eq!(g.map(|h| h.1.t.to_bits()), s.map(|h| h.1.t.to_bits()));
+                if let (Some((gi, gh)), Some((si, _))) = (g, s) {
+                    hits += 1;
+                    if gi != si {
+                        // Only a tie: the packet's triangle is hit at the same distance.
+                        ties += 1;
+                        let [a, b, c] = indices[gi as usize].map(|i| positions[i as usize]);
+                        let again = intersect_triangle(&rays[lane], a, b - a, c - a, t_max[lane]);
+                        assert_eq!(again.map(|h| h.t), Some(gh.t));
+                    }
+                }
+            }
+        }
+        assert!(hits > 3000 && ties < hits / 100, "{hits} hits, {ties} ties");
+    }
+
+    #[test]
+    fn deep_trees_and_every_instruction_set_walk_the_same_way() {
+        let mut rng = Rng32::new(8);
+        let (positions, indices) = soup(&mut rng);
+        let set = TriangleSet::new(&positions, &indices);
+        let bvh = set.bvh();
+        let mut visited = 0;
+        for (rays, t_max) in packets(&mut rng, 200) {
+            // A leaf that shortens every ray reaching it a little: the walk (leaves in
+            // order, with the rays reaching each) and the final distances must agree.
+            let walk = |run: &dyn Fn(&mut LeafTest) -> Lanes| {
+                let mut visits = Vec::new();
+                let t = run(&mut |first, _, active, t: &mut Lanes| {
+                    visits.push((first, active));
+                    for (lane, t) in t.iter_mut().enumerate() {
+                        if active & (1 << lane) != 0 {
+                            *t *= 0.99;
+                        }
+                    }
+                });
+                (visits, t.map(f32::to_bits))
+            };
+            let (nodes, depth) = (&bvh.nodes, bvh.depth);
+            let dispatched = walk(&|leaf| closest_hit_masked(nodes, depth, &rays, &t_max, leaf));
+            let heap = walk(&|leaf| closest_hit_masked(nodes, 100, &rays, &t_max, leaf));
+            let plain = walk(&|leaf| closest_hit_lanes(nodes, depth, &rays, &t_max, leaf));
+            visited += dispatched.0.len();
+            assert_eq!(dispatched, heap);
+            assert_eq!(dispatched, plain);
+        }
+        assert!(visited > 2000, "{visited} leaves visited");
+    }
+}
