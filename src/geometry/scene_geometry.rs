@@ -152,7 +152,8 @@ impl Geometry {
     /// [`Geometry::intersect`] for a packet of rays traced together (see
     /// [`Bvh::closest_hit_packet`]): ray `lane` in (0, t_max[lane]); lanes whose t_max is
     /// not positive take no part and get `None`. Each hit is at the single-ray query's
-    /// distance; of primitives hit at exactly that distance the other one may be found.
+    /// distance, up to the visiting order's say at exact ties (see
+    /// [`Bvh::closest_hit_packet`]).
     #[inline]
     pub fn intersect_packet(
         &self,

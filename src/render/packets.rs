@@ -232,7 +232,8 @@ mod tests {
     /// Camera packets give every sample the radiance the one-ray-at-a-time path gives it
     /// (the pre-packet renderer's sample, written out here), in the same order, on
     /// scenes of rectangles, spheres and meshes, with a count of samples that is not a
-    /// multiple of the packet and with optimal MIS's per-pixel state.
+    /// multiple of the packet and with optimal MIS's per-pixel state; and on a scene whose
+    /// BVH is one node, through the single-ray path.
     #[test]
     fn packets_give_the_samples_of_single_rays() {
         // (scene, optimal MIS, height of the tile's centre as a share of the image's)
@@ -241,8 +242,13 @@ mod tests {
             ("builtin:materials", false, 0.5),
             ("tests/scenes/mesh_obj.xml", false, 0.5),
             ("builtin:veach-mis", true, 0.8),
+            ("tests/scenes/tent_point.xml", false, 0.85),
         ] {
             let scene = load(spec).expect("scene");
+            // Every scene but the last goes through packets; the last keeps single rays.
+            let one_node = spec.ends_with("tent_point.xml");
+            let depth = scene.geometry.bvh().depth();
+            assert_eq!(depth < MIN_PACKET_DEPTH, one_node, "{spec}: depth {depth}");
             let mut settings = RenderSettings::for_scene(&scene);
             if optimal_mis {
                 settings.estimator = EstimatorKind::Mis;

@@ -167,8 +167,9 @@ impl Bvh {
     /// or whose t_max is not positive takes no part (its answer is `None`).
     /// `leaf(lane, first, count, ray, t_closest)` tests one ray against a leaf as
     /// [`Bvh::closest_hit_leaf`]'s callback does. Each answer has the distance of the
-    /// single-ray query's; between primitives hit at exactly the same distance the other
-    /// one may win.
+    /// single-ray query's, except where the visiting order decides: between primitives
+    /// hit at exactly the same distance, or within the slab test's rounding margin of a
+    /// box's entry face (see the `packet` module).
     #[inline]
     pub fn closest_hit_packet<F: FnMut(usize, u32, u32, &Ray, f32) -> Option<(u32, f32)>>(
         &self,

@@ -8,10 +8,13 @@
 //!
 //! Every lane runs the single-ray slab test of [`WideNode::intersect`] with the same
 //! operations in the same order (the near plane picked by the sign of 1/d, the same
-//! `max`/`min` nesting, the same robust exit scale), and a lane tests a leaf whenever its
-//! box entry is within the lane's closest hit so far. So each ray finds the closest hit
-//! the single-ray query finds, at the same distance; only between primitives hit at
-//! exactly the same distance may the other one win, as the visiting order differs.
+//! `max`/`min` nesting, the same robust exit scale), and a ray takes part in a box's
+//! children or leaf only if it entered that box, and, for a box taken from the stack,
+//! no farther than its closest hit so far (the single-ray traversal's rules). So each ray
+//! finds the closest hit the single-ray query finds, at the same distance. The visiting
+//! order differs, so between two hits at exactly the same distance the other one may
+//! win; and, as the single-ray query's own answer there depends on its order, between
+//! hits within the slab test's rounding margin (a few ulps) of a box's entry face.
 
 use std::mem::MaybeUninit;
 
@@ -41,8 +44,8 @@ struct PacketData {
 }
 
 impl PacketData {
-    /// The packet's data; `valid[lane]` false gives a harmless placeholder ray (its
-    /// closest distance is −∞, so it never enters a box).
+    /// The packet's data; `valid[lane]` false gives a harmless placeholder ray (the
+    /// traversal keeps such a lane out of every box).
     fn new(rays: &[Ray; PACKET], valid: &[bool; PACKET]) -> PacketData {
         let mut data = PacketData {
             o: [[0.0; PACKET]; 3],
@@ -64,10 +67,11 @@ impl PacketData {
         data
     }
 
-    /// Entry distance of each ray into child `c` of `node`, +∞ where the ray misses the
-    /// box within its `t_closest`: the single-ray slab test, lane by lane.
+    /// Entry distance of each ray of `live` into child `c` of `node`, +∞ where the ray
+    /// misses the box within its `t_closest` or is not live: the single-ray slab test,
+    /// lane by lane.
     #[inline(always)]
-    fn entry(&self, node: &WideNode, c: usize, t_closest: &Lanes) -> Lanes {
+    fn entry(&self, node: &WideNode, c: usize, t_closest: &Lanes, live: &[bool; PACKET]) -> Lanes {
         let lo = [node.planes[0][c], node.planes[1][c], node.planes[2][c]];
         let hi = [node.planes[3][c], node.planes[4][c], node.planes[5][c]];
         let mut entry = [0.0f32; PACKET];
@@ -85,18 +89,35 @@ impl PacketData {
             // The same nesting as `WideNode::intersect`, so the same bits.
             let t0 = max(near[0], max(near[1], max(near[2], 0.0)));
             let t1 = min(far[0], min(far[1], min(far[2], t_closest[lane]))) * ROBUST_EXIT_SCALE;
-            entry[lane] = if t0 <= t1 { t0 } else { f32::INFINITY };
+            entry[lane] = if t0 <= t1 && live[lane] {
+                t0
+            } else {
+                f32::INFINITY
+            };
         }
         entry
     }
 }
 
-/// Bit `lane` set where `entry[lane] <= t_closest[lane]`: the rays that still reach a box.
+/// Bit `lane` set where the ray entered a box (`entry[lane]` finite) no farther than its
+/// closest hit so far: the rays for which a waiting box is still worth visiting, as the
+/// single-ray traversal decides when it pops a box.
 #[inline(always)]
 fn reaching(entry: &Lanes, t_closest: &Lanes) -> u32 {
     let mut mask = 0;
     for lane in 0..PACKET {
-        mask |= ((entry[lane] <= t_closest[lane]) as u32) << lane;
+        let reaches = entry[lane] < f32::INFINITY && entry[lane] <= t_closest[lane];
+        mask |= (reaches as u32) << lane;
+    }
+    mask
+}
+
+/// Bit `lane` set where `entry[lane]` is finite: the rays that entered a box just tested.
+#[inline(always)]
+fn entered(entry: &Lanes) -> u32 {
+    let mut mask = 0;
+    for (lane, &t) in entry.iter().enumerate() {
+        mask |= ((t < f32::INFINITY) as u32) << lane;
     }
     mask
 }
@@ -216,14 +237,21 @@ fn closest_hit_lanes<F: FnMut(u32, u32, u32, &mut Lanes)>(
     };
     // Invariant: slots[..len] are written.
     let mut len = 0;
+    // The box being visited and the rays in it: those that entered it when it was tested
+    // (visited at once, nearest of its node's children) or still reach it (taken from the
+    // stack). Only they test its children or its leaf, as each ray alone would.
     let mut current = ChildRef::inner(0);
-    let mut entry: Lanes = std::array::from_fn(|l| if valid[l] { 0.0 } else { f32::INFINITY });
+    let mut active = valid
+        .iter()
+        .enumerate()
+        .fold(0u32, |m, (l, &v)| m | (v as u32) << l);
     loop {
         if current.is_leaf() {
             let (first, count) = current.leaf_range();
-            leaf(first, count, reaching(&entry, &t_closest), &mut t_closest);
+            leaf(first, count, active, &mut t_closest);
         } else {
             let node = &nodes[current.0 as usize];
+            let live: [bool; PACKET] = std::array::from_fn(|l| active >> l & 1 != 0);
             // The children some ray enters, with their entries and the nearest of them.
             let mut hits: [(ChildRef, Lanes, f32); WIDTH] =
                 [(ChildRef(0), [0.0; PACKET], 0.0); WIDTH];
@@ -233,7 +261,7 @@ fn closest_hit_lanes<F: FnMut(u32, u32, u32, &mut Lanes)>(
                 if node.planes[0][c] == f32::INFINITY {
                     continue;
                 }
-                let e = data.entry(node, c, &t_closest);
+                let e = data.entry(node, c, &t_closest, &live);
                 let near = nearest(&e);
                 if near < f32::INFINITY {
                     // Insertion by the packet's nearest entry, farthest first.
@@ -252,7 +280,7 @@ fn closest_hit_lanes<F: FnMut(u32, u32, u32, &mut Lanes)>(
                     slots[len] = MaybeUninit::new((child, e));
                     len += 1;
                 }
-                (current, entry) = (hits[n - 1].0, hits[n - 1].1);
+                (current, active) = (hits[n - 1].0, entered(&hits[n - 1].1));
                 continue;
             }
         }
@@ -264,8 +292,9 @@ fn closest_hit_lanes<F: FnMut(u32, u32, u32, &mut Lanes)>(
             len -= 1;
             // SAFETY: slot `len` is below the old length, so it was written.
             let (child, e) = unsafe { slots[len].assume_init() };
-            if reaching(&e, &t_closest) != 0 {
-                (current, entry) = (child, e);
+            let reach = reaching(&e, &t_closest);
+            if reach != 0 {
+                (current, active) = (child, reach);
                 break;
             }
         }
@@ -394,5 +423,33 @@ mod tests {
             assert_eq!(dispatched, plain);
         }
         assert!(visited > 2000, "{visited} leaves visited");
+    }
+
+    #[test]
+    fn rays_that_miss_a_box_never_test_what_is_inside() {
+        let mut rng = Rng32::new(9);
+        let (positions, indices) = soup(&mut rng);
+        let set = TriangleSet::new(&positions, &indices);
+        let bvh = set.bvh();
+        let mut tested = 0;
+        for k in 0..300 {
+            // Lanes 0..4 aim into the soup (0..10)³; lanes 4..8 start beside it and look
+            // away from it, with t_max = ∞: they enter no box at all.
+            let o = Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 4.0 - 2.0;
+            let rays: [Ray; PACKET] = std::array::from_fn(|l| {
+                let jitter = Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32());
+                if l < 4 {
+                    Ray::new(o, Vec3::splat(5.0) + jitter - o)
+                } else {
+                    Ray::new(o - Vec3::splat(3.0), -Vec3::ONE - jitter)
+                }
+            });
+            let t_max = [f32::INFINITY; PACKET];
+            closest_hit_masked(&bvh.nodes, bvh.depth, &rays, &t_max, |_, _, active, _| {
+                assert_eq!(active & 0xf0, 0, "packet {k}: a ray that misses took part");
+                tested += active.count_ones();
+            });
+        }
+        assert!(tested > 1000, "{tested} leaf tests");
     }
 }

@@ -68,7 +68,8 @@ impl TriangleSet {
     }
 
     /// [`TriangleSet::closest_hit`] for a packet of rays traced together (see
-    /// [`Bvh::closest_hit_packet`]; lanes with t_max ≤ 0 take no part).
+    /// [`Bvh::closest_hit_packet`]; lanes whose ray is not finite or whose t_max is not
+    /// positive take no part).
     #[inline]
     pub fn closest_hit_packet(
         &self,
