@@ -36,6 +36,25 @@ pub(super) trait TileSamples: Sync {
     );
 }
 
+/// Calls `f(x, y, pixel key, sample index)` for samples `samples` of every pixel of
+/// `tile` (of an image `width` pixels wide, streams keyed by `seed`) in film order.
+#[inline(always)]
+fn film_order(
+    (x0, y0, x1, y1): Tile,
+    samples: Range<u32>,
+    (seed, width): (u64, u32),
+    mut f: impl FnMut(u32, u32, u64, u32),
+) {
+    for y in y0..y1 {
+        for x in x0..x1 {
+            let key = Sampler::pixel_key(seed, (y * width + x) as u64);
+            for s in samples.clone() {
+                f(x, y, key, s);
+            }
+        }
+    }
+}
+
 /// A sample at a time: `f(x, y, pixel key, sample index)` gives the film position and
 /// radiance (as the spatial-reuse rounds hand over their finished samples).
 pub(super) struct OneByOne<F>(pub F);
@@ -43,20 +62,15 @@ pub(super) struct OneByOne<F>(pub F);
 impl<F: Fn(u32, u32, u64, u32) -> (Vec2, Spectrum) + Sync> TileSamples for OneByOne<F> {
     fn run(
         &self,
-        (x0, y0, x1, y1): Tile,
+        tile: Tile,
         samples: Range<u32>,
-        (seed, width): (u64, u32),
+        seed_width: (u64, u32),
         sink: &mut impl FnMut(u32, u32, Vec2, Spectrum),
     ) {
-        for y in y0..y1 {
-            for x in x0..x1 {
-                let key = Sampler::pixel_key(seed, (y * width + x) as u64);
-                for s in samples.clone() {
-                    let (p, l) = (self.0)(x, y, key, s);
-                    sink(x, y, p, l);
-                }
-            }
-        }
+        film_order(tile, samples, seed_width, |x, y, key, s| {
+            let (p, l) = (self.0)(x, y, key, s);
+            sink(x, y, p, l);
+        });
     }
 }
 
@@ -89,38 +103,28 @@ struct Pending {
 impl TileSamples for CameraPackets<'_> {
     fn run(
         &self,
-        (x0, y0, x1, y1): Tile,
+        tile: Tile,
         samples: Range<u32>,
-        (seed, width): (u64, u32),
+        seed_width: (u64, u32),
         sink: &mut impl FnMut(u32, u32, Vec2, Spectrum),
     ) {
         if self.scene.geometry.bvh().depth() < MIN_PACKET_DEPTH {
             // A tree of one node: a packet would save no node tests, only add its set-up.
-            for y in y0..y1 {
-                for x in x0..x1 {
-                    let key = Sampler::pixel_key(seed, (y * width + x) as u64);
-                    for s in samples.clone() {
-                        let mut p = self.start(x, y, key, s);
-                        let hit = self.scene.geometry.intersect(&p.ray, f32::INFINITY);
-                        let l = self.radiance(x, y, &p.ray, hit.as_ref(), &mut p.sampler);
-                        sink(x, y, p.film, l);
-                    }
-                }
-            }
+            film_order(tile, samples, seed_width, |x, y, key, s| {
+                let mut p = self.start(x, y, key, s);
+                let hit = self.scene.geometry.intersect(&p.ray, f32::INFINITY);
+                let l = self.radiance(x, y, &p.ray, hit.as_ref(), &mut p.sampler);
+                sink(x, y, p.film, l);
+            });
             return;
         }
         let mut pending: Vec<Pending> = Vec::with_capacity(PACKET);
-        for y in y0..y1 {
-            for x in x0..x1 {
-                let key = Sampler::pixel_key(seed, (y * width + x) as u64);
-                for s in samples.clone() {
-                    pending.push(self.start(x, y, key, s));
-                    if pending.len() == PACKET {
-                        self.shade(&mut pending, sink);
-                    }
-                }
+        film_order(tile, samples, seed_width, |x, y, key, s| {
+            pending.push(self.start(x, y, key, s));
+            if pending.len() == PACKET {
+                self.shade(&mut pending, sink);
             }
-        }
+        });
         self.shade(&mut pending, sink);
     }
 }
