@@ -134,6 +134,14 @@ impl Microfacet {
     /// Heitz 2018, listing 1: stretch v to the α = 1 configuration, sample the projected
     /// hemisphere as a disk whose far half is squeezed by (1 + v_h,z)/2, lift, unstretch.
     fn sample_ggx_visible(&self, v: Vec3, u: Vec2) -> Vec3 {
+        let (sin_phi, cos_phi) = (TWO_PI * u.y).sin_cos();
+        self.visible_frame(v).normal(u.x.sqrt(), sin_phi, cos_phi)
+    }
+
+    /// The part of GGX visible-normal sampling that depends on v alone (listing 1 up to
+    /// the disk sample), for callers that draw many normals seen from one direction.
+    #[inline]
+    pub fn visible_frame(&self, v: Vec3) -> VisibleFrame {
         let vh = Vec3::new(self.alpha_u * v.x, self.alpha_v * v.y, v.z).normalize();
         let len2 = vh.x * vh.x + vh.y * vh.y;
         let t1 = if len2 > 0.0 {
@@ -141,14 +149,14 @@ impl Microfacet {
         } else {
             Vec3::X
         };
-        let t2 = vh.cross(t1);
-        let r = u.x.sqrt();
-        let (sin_phi, cos_phi) = (TWO_PI * u.y).sin_cos();
-        let p1 = r * cos_phi;
-        let s = 0.5 * (1.0 + vh.z);
-        let p2 = (1.0 - s) * (1.0 - p1 * p1).max(0.0).sqrt() + s * r * sin_phi;
-        let nh = p1 * t1 + p2 * t2 + (1.0 - p1 * p1 - p2 * p2).max(0.0).sqrt() * vh;
-        Vec3::new(self.alpha_u * nh.x, self.alpha_v * nh.y, nh.z.max(0.0)).normalize()
+        VisibleFrame {
+            alpha_u: self.alpha_u,
+            alpha_v: self.alpha_v,
+            vh,
+            t1,
+            t2: vh.cross(t1),
+            s: 0.5 * (1.0 + vh.z),
+        }
     }
 
     /// Beckmann normals with density D(m)·cos θ_m: φ from the anisotropic ellipse,
@@ -180,6 +188,31 @@ impl Microfacet {
         let (s, c) = phi.sin_cos();
         let alpha2 = 1.0 / ((c / self.alpha_u).powi(2) + (s / self.alpha_v).powi(2));
         (s, c, alpha2)
+    }
+}
+
+/// GGX visible-normal sampling (Heitz 2018, listing 1) for one direction v: the
+/// stretched v_h, its tangents and the squeeze (1 + v_h,z)/2.
+#[derive(Clone, Copy, Debug)]
+pub struct VisibleFrame {
+    alpha_u: f32,
+    alpha_v: f32,
+    vh: Vec3,
+    t1: Vec3,
+    t2: Vec3,
+    s: f32,
+}
+
+impl VisibleFrame {
+    /// The normal for the disk point of radius `r` = √u₀ at angle 2πu₁ (given by its sine
+    /// and cosine): squeeze, lift to the hemisphere, unstretch.
+    #[inline]
+    pub fn normal(&self, r: f32, sin_phi: f32, cos_phi: f32) -> Vec3 {
+        let Self { vh, t1, t2, s, .. } = *self;
+        let p1 = r * cos_phi;
+        let p2 = (1.0 - s) * (1.0 - p1 * p1).max(0.0).sqrt() + s * r * sin_phi;
+        let nh = p1 * t1 + p2 * t2 + (1.0 - p1 * p1 - p2 * p2).max(0.0).sqrt() * vh;
+        Vec3::new(self.alpha_u * nh.x, self.alpha_v * nh.y, nh.z.max(0.0)).normalize()
     }
 }
 
