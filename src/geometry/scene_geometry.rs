@@ -150,7 +150,7 @@ impl Geometry {
     }
 
     /// [`Geometry::intersect`] for a packet of rays traced together (see
-    /// [`Bvh::closest_hit_packet`]): ray `lane` in (0, t_max[lane]); lanes whose t_max is
+    /// [`Bvh::closest_hit_packet`]): ray `lane` in (0, `t_max[lane]`); lanes whose t_max is
     /// not positive take no part and get `None`. Each hit is at the single-ray query's
     /// distance, up to the visiting order's say at exact ties (see
     /// [`Bvh::closest_hit_packet`]).

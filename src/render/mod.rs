@@ -21,7 +21,7 @@ use crate::integrator::{Estimator, EstimatorKind, MisHeuristic, OptimalPixel};
 use crate::scene::Scene;
 use packets::TileSamples;
 
-/// Side of a square tile in pixels, on images large enough to give [`MIN_TILES`] of them.
+/// Side of a square tile in pixels, on images large enough to give `MIN_TILES` (64) of them.
 pub const TILE: u32 = 16;
 
 /// The fewest tiles a round should have: each round ends at a barrier, so with a few

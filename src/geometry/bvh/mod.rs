@@ -163,7 +163,7 @@ impl Bvh {
     }
 
     /// Closest hits of a packet of [`PACKET`] rays, traversed together (see the `packet`
-    /// module): ray `lane` is sought in (0, t_max[lane]); a lane whose ray is not finite
+    /// module): ray `lane` is sought in (0, `t_max[lane]`); a lane whose ray is not finite
     /// or whose t_max is not positive takes no part (its answer is `None`).
     /// `leaf(lane, first, count, ray, t_closest)` tests one ray against a leaf as
     /// [`Bvh::closest_hit_leaf`]'s callback does. Each answer has the distance of the

@@ -65,7 +65,7 @@ pub enum Shape {
 pub struct ShapeHit {
     /// Ray parameter.
     pub t: f32,
-    /// Surface parameters (barycentrics b1, b2 for triangles; (u, v) in [0,1]² otherwise).
+    /// Surface parameters (barycentrics b1, b2 for triangles; (u, v) in \[0, 1\]² otherwise).
     pub uv: Vec2,
 }
 

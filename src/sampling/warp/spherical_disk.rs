@@ -8,7 +8,7 @@
 //! form in complete elliptic integrals (Paxton 1959, "Solid angle calculation for a
 //! circular disk"), evaluated with Bulirsch's `cel`: for a point at height h over the disk's plane and r₀ from its axis,
 //!
-//! Ω = 2π·[r₀ < a] − (2h/R)·(K(m) + (a − r₀)/(a + r₀)·Π(n, m)),
+//! Ω = 2π·\[r₀ < a\] − (2h/R)·(K(m) + (a − r₀)/(a + r₀)·Π(n, m)),
 //! R = √(h² + (a + r₀)²), m = 4ar₀/R², n = 4ar₀/(a + r₀)²,
 //!
 //! and Ω = π − (2h/R)·K(m) on the rim's cylinder (r₀ = a). Turned to face the shading

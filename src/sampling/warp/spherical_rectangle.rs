@@ -1,7 +1,7 @@
 //! Directions uniform in the solid angle a rectangle subtends at a shading point (Ureña,
 //! Fajardo & King 2013, "An Area-Preserving Parametrization for Spherical Rectangles",
 //! EGSR), with the inverse map. Internal arithmetic is in f64; rectangles below
-//! [`MIN_SOLID_ANGLE`](super::MIN_SOLID_ANGLE), seen edge-on, or with non-perpendicular
+//! [`MIN_SOLID_ANGLE`], seen edge-on, or with non-perpendicular
 //! edges give `None`.
 
 use std::f64::consts::TAU;

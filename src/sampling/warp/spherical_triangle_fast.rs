@@ -30,7 +30,7 @@ use super::spherical_triangle::{MIN_SOLID_ANGLE, arvo_direction, inside, one_min
 use crate::math::atan::atan2;
 
 /// A triangle seen from a shading point, ready for uniform solid-angle sampling (see the
-/// module doc); the same map as [`SphericalTriangle`].
+/// module doc); the same map as [`SphericalTriangle`](super::SphericalTriangle).
 #[derive(Clone, Copy, Debug)]
 pub struct FastSphericalTriangle {
     /// Unit directions from the shading point to the vertices.
@@ -43,7 +43,7 @@ pub struct FastSphericalTriangle {
 }
 
 impl FastSphericalTriangle {
-    /// The triangle (v0, v1, v2) seen from `p`, or `None` where [`SphericalTriangle::new`]
+    /// The triangle (v0, v1, v2) seen from `p`, or `None` where [`SphericalTriangle::new`](super::SphericalTriangle::new)
     /// gives `None` (solid angle below [`MIN_SOLID_ANGLE`], non-finite input).
     #[inline]
     pub fn new(p: Vec3, v0: Vec3, v1: Vec3, v2: Vec3) -> Option<FastSphericalTriangle> {
@@ -83,7 +83,7 @@ impl FastSphericalTriangle {
     }
 
     /// A unit direction uniform in the triangle's solid angle and its density 1/Ω (the map
-    /// of [`SphericalTriangle::sample`]).
+    /// of [`SphericalTriangle::sample`](super::SphericalTriangle::sample)).
     #[inline]
     pub fn sample(&self, u: Vec2) -> (Vec3, f32) {
         let (a, b, c) = (self.a, self.b, self.c);
