@@ -25,8 +25,9 @@ use packets::TileSamples;
 pub const TILE: u32 = 16;
 
 /// The fewest tiles a round should have: each round ends at a barrier, so with a few
-/// large tiles one thread waits for the other's last tile (splatting 12 tiles of 16² on
-/// a 64×48 image kept 2 threads busy 183–189 % of the time, 4² tiles 189–197 %).
+/// large tiles one thread waits for the other's last tile (2-thread CPU use of
+/// `constant_env`, 9 tiles of 16², and `path_include`, 12: 183 and 189 %; with 4² tiles,
+/// 196 and 197 %).
 const MIN_TILES: u32 = 64;
 
 /// What a render produced.
@@ -215,12 +216,26 @@ fn round_pixel_box(
 /// A rectangle of pixels (x0, y0, x1, y1), half-open.
 type Tile = (u32, u32, u32, u32);
 
-/// The side of the tiles of a `w`×`h` image: [`TILE`], halved (down to 4) while the
-/// image would have fewer than [`MIN_TILES`] tiles, so that small images keep both
-/// threads busy up to each round's barrier.
+/// The smallest tile side: one camera-ray packet's block wide.
+const MIN_TILE: u32 = packets::BLOCK_WIDTH;
+
+// Every tile side the halving gives (TILE, TILE/2, …, MIN_TILE) is a whole number of
+// packet blocks in both directions, so tiles never split a block: which rays share a
+// packet stays independent of the tiling.
+const _: () = assert!(
+    TILE.is_power_of_two()
+        && MIN_TILE.is_power_of_two()
+        && TILE >= MIN_TILE
+        && MIN_TILE.is_multiple_of(packets::BLOCK_WIDTH)
+        && MIN_TILE.is_multiple_of(packets::BLOCK_HEIGHT)
+);
+
+/// The side of the tiles of a `w`×`h` image: [`TILE`], halved (down to one packet block,
+/// 4) while the image would have fewer than `MIN_TILES` tiles, so that small images keep
+/// both threads busy up to each round's barrier.
 fn tile_size(w: u32, h: u32) -> u32 {
     let mut size = TILE;
-    while size > 4 && w.div_ceil(size) * h.div_ceil(size) < MIN_TILES {
+    while size > MIN_TILE && w.div_ceil(size) * h.div_ceil(size) < MIN_TILES {
         size /= 2;
     }
     size
