@@ -95,15 +95,23 @@ fn sample_order(
     }
 }
 
-/// Calls `f(x, y, pixel key, sample index)` for the samples of a chunk of a block, pixel
-/// by pixel, as [`sample_order`] hands them out.
+/// Calls `f(x, y, pixel key, sample index)` for every sample of [`sample_order`], one at
+/// a time: block by block, chunk by chunk, within a chunk pixel by pixel (the order the
+/// packet path shades them in).
 #[inline(always)]
-fn each_sample(chunk: Range<u32>, block: &[BlockPixel], mut f: impl FnMut(u32, u32, u64, u32)) {
-    for &(x, y, key) in block {
-        for s in chunk.clone() {
-            f(x, y, key, s);
+fn each_sample(
+    tile: Tile,
+    samples: Range<u32>,
+    seed_width: (u64, u32),
+    mut f: impl FnMut(u32, u32, u64, u32),
+) {
+    sample_order(tile, samples, seed_width, |chunk, block| {
+        for &(x, y, key) in block {
+            for s in chunk.clone() {
+                f(x, y, key, s);
+            }
         }
-    }
+    });
 }
 
 /// A sample at a time: `f(x, y, pixel key, sample index)` gives the film position and
@@ -118,11 +126,9 @@ impl<F: Fn(u32, u32, u64, u32) -> (Vec2, Spectrum) + Sync> TileSamples for OneBy
         seed_width: (u64, u32),
         sink: &mut impl FnMut(u32, u32, Vec2, Spectrum),
     ) {
-        sample_order(tile, samples, seed_width, |chunk, block| {
-            each_sample(chunk, block, |x, y, key, s| {
-                let (p, l) = (self.0)(x, y, key, s);
-                sink(x, y, p, l);
-            });
+        each_sample(tile, samples, seed_width, |x, y, key, s| {
+            let (p, l) = (self.0)(x, y, key, s);
+            sink(x, y, p, l);
         });
     }
 }
@@ -163,13 +169,11 @@ impl TileSamples for CameraPackets<'_> {
     ) {
         if self.scene.geometry.bvh().depth() < MIN_PACKET_DEPTH {
             // A tree of one node: a packet would save no node tests, only add its set-up.
-            sample_order(tile, samples, seed_width, |chunk, block| {
-                each_sample(chunk, block, |x, y, key, s| {
-                    let mut p = self.start(x, y, key, s);
-                    let hit = self.scene.geometry.intersect(&p.ray, f32::INFINITY);
-                    let l = self.radiance(x, y, &p.ray, hit.as_ref(), &mut p.sampler);
-                    sink(x, y, p.film, l);
-                });
+            each_sample(tile, samples, seed_width, |x, y, key, s| {
+                let mut p = self.start(x, y, key, s);
+                let hit = self.scene.geometry.intersect(&p.ray, f32::INFINITY);
+                let l = self.radiance(x, y, &p.ray, hit.as_ref(), &mut p.sampler);
+                sink(x, y, p.film, l);
             });
             return;
         }
