@@ -10,13 +10,16 @@ pub mod mis;
 pub mod probe;
 mod ris;
 mod spatial;
+mod staged;
 
 pub use crate::settings::{DEFAULT_RIS_CANDIDATES, MAX_RIS_CANDIDATES};
 
 pub use mis::{MisHeuristic, MisSettings, OptimalPixel, TechniqueMoments};
 pub use probe::{Probe, ProbeSample};
 pub use spatial::{Reuse, SpatialReservoir, SpatialSurface};
+pub use staged::{Begun, Staged};
 
+use std::borrow::Cow;
 use std::cell::RefCell;
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -192,32 +195,13 @@ impl Estimator {
         probe: Option<&Probe>,
         optimal: Option<&RefCell<OptimalPixel>>,
     ) -> Spectrum {
-        let mut material = &scene.materials[hit.material as usize];
-        let textured;
-        if let Some(t) = scene.texture(hit.material) {
-            textured = t.apply(material, hit.uv);
-            material = &textured;
-        }
-        let flipped;
-        let hit = if w_out.dot(hit.ng) < 0.0 && scene.is_two_sided(hit.material) {
-            flipped = flip(hit);
-            &flipped
-        } else {
-            hit
-        };
-        let w_out_local = hit.frame.to_local(w_out);
-        if w_out_local.z <= 0.0 || w_out.dot(hit.ng) <= 0.0 {
+        let Some(sh) = Shading::at(scene, hit, w_out) else {
             return Spectrum::ZERO; // seen from behind: one-sided BSDFs reflect nothing
-        }
-        let at = ShadingPoint {
-            p: hit.p,
-            ng: hit.ng,
-            n: hit.frame.n,
         };
         let ctx = Context {
             probe,
             optimal,
-            ..self.context(scene, &at, hit, material, w_out_local)
+            ..self.context(scene, &sh.at, &sh.hit, &sh.material, sh.w_out)
         };
         match self.kind {
             EstimatorKind::Light => light::estimate(&ctx, src),
@@ -252,6 +236,63 @@ impl Estimator {
             optimal: None,
             emitters_reachable: self.emitters_reachable,
         }
+    }
+}
+
+/// What every estimate at a surface hit starts from: its material (textured), the hit
+/// (flipped to the side it is seen from when two-sided), w_out in the shading frame and
+/// the shading point.
+struct Shading<'a> {
+    material: Cow<'a, Material>,
+    hit: SurfaceHit,
+    w_out: Vec3,
+    at: ShadingPoint,
+}
+
+impl<'a> Shading<'a> {
+    /// The shading at `hit` seen from world direction `w_out`, or `None` when it is seen
+    /// from behind (one-sided BSDFs reflect nothing there).
+    #[inline(always)]
+    fn at(scene: &'a Scene, hit: &SurfaceHit, w_out: Vec3) -> Option<Shading<'a>> {
+        let (hit, w_out_local) = oriented(scene, hit, w_out)?;
+        let base = &scene.materials[hit.material as usize];
+        let material = match scene.texture(hit.material) {
+            Some(t) => Cow::Owned(t.apply(base, hit.uv)),
+            None => Cow::Borrowed(base),
+        };
+        Some(Shading {
+            material,
+            at: shading_point(&hit),
+            hit,
+            w_out: w_out_local,
+        })
+    }
+}
+
+/// `hit` turned to the side it is seen from along world direction `w_out` (flipped when
+/// its material is two-sided and it is seen from behind), and `w_out` in its shading
+/// frame; `None` when it is seen from behind.
+#[inline(always)]
+fn oriented(scene: &Scene, hit: &SurfaceHit, w_out: Vec3) -> Option<(SurfaceHit, Vec3)> {
+    let hit = if w_out.dot(hit.ng) < 0.0 && scene.is_two_sided(hit.material) {
+        flip(hit)
+    } else {
+        *hit
+    };
+    let w_out_local = hit.frame.to_local(w_out);
+    if w_out_local.z <= 0.0 || w_out.dot(hit.ng) <= 0.0 {
+        return None;
+    }
+    Some((hit, w_out_local))
+}
+
+/// What lights see of a hit: its point and normals.
+#[inline(always)]
+fn shading_point(hit: &SurfaceHit) -> ShadingPoint {
+    ShadingPoint {
+        p: hit.p,
+        ng: hit.ng,
+        n: hit.frame.n,
     }
 }
 

@@ -48,7 +48,7 @@ use glam::{Vec2, Vec3};
 
 use super::mis::{LightTechnique, estimate_with};
 use super::ris::{Reservoir, above_horizons, resample};
-use super::{Context, Estimator, EstimatorKind, emitted_at, f_cos, flip};
+use super::{Context, Estimator, EstimatorKind, Shading, emitted_at, f_cos};
 use crate::bsdf::{Bsdf, Material};
 use crate::geometry::{Ray, SurfaceHit};
 use crate::light::select::LightSelector;
@@ -368,28 +368,14 @@ impl Estimator {
         let w_out = -ray.d.normalize();
         let emitted = emitted_at(scene, &hit, w_out);
         // As `Estimator::direct_probed` shades a hit, with the material and hit kept.
-        let mut material = scene.materials[hit.material as usize].clone();
-        if let Some(t) = scene.texture(hit.material) {
-            material = t.apply(&material, hit.uv);
-        }
-        let hit = if w_out.dot(hit.ng) < 0.0 && scene.is_two_sided(hit.material) {
-            flip(&hit)
-        } else {
-            hit
-        };
-        let w_out_local = hit.frame.to_local(w_out);
-        if w_out_local.z <= 0.0 || w_out.dot(hit.ng) <= 0.0 {
+        let Some(sh) = Shading::at(scene, &hit, w_out) else {
             return (emitted, None);
-        }
+        };
         let surface = SpatialSurface {
-            at: ShadingPoint {
-                p: hit.p,
-                ng: hit.ng,
-                n: hit.frame.n,
-            },
-            hit,
-            material,
-            w_out: w_out_local,
+            at: sh.at,
+            hit: sh.hit,
+            material: sh.material.into_owned(),
+            w_out: sh.w_out,
         };
         let ctx = context_of(self, scene, &surface);
         let m = self.ris.unwrap_or(1);

@@ -4,6 +4,7 @@
 
 mod area;
 pub mod environment;
+mod lanes;
 mod point;
 mod polygon;
 pub mod select;
@@ -13,6 +14,7 @@ pub use area::{
     UntexturableShape, check_sampling, sampling_summary, texture_uv_at, uniform_area_pdf,
 };
 pub use environment::Environment;
+pub use lanes::{LaneJob, LightLanes};
 pub use point::PointLight;
 pub use polygon::PolygonLight;
 pub use select::LightBounds;

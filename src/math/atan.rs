@@ -22,6 +22,17 @@ const P: [f32; 8] = [
     -0.003_965_136,
 ];
 
+/// atan t for t ∈ [0, 1] (the polynomial alone, before any reflection).
+#[inline(always)]
+pub fn atan_unit(t: f32) -> f32 {
+    let s = t * t;
+    let mut p = P[7];
+    for &c in P[..7].iter().rev() {
+        p = p * s + c;
+    }
+    t * p
+}
+
 /// atan2(y, x) in (−π, π] to within 4·10⁻⁷ rad for finite arguments; 0 at the origin,
 /// NaN for NaN or two infinite arguments.
 #[inline]
@@ -31,13 +42,7 @@ pub fn atan2(y: f32, x: f32) -> f32 {
     if hi == 0.0 {
         return 0.0;
     }
-    let t = lo / hi;
-    let s = t * t;
-    let mut p = P[7];
-    for &c in P[..7].iter().rev() {
-        p = p * s + c;
-    }
-    let mut r = t * p;
+    let mut r = atan_unit(lo / hi);
     if ay > ax {
         r = FRAC_PI_2 - r;
     }

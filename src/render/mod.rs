@@ -18,6 +18,7 @@ use rayon::prelude::*;
 
 use crate::image::{Film, PixelStats};
 use crate::integrator::{Estimator, EstimatorKind, MisHeuristic, OptimalPixel};
+use crate::light::LightLanes;
 use crate::scene::Scene;
 use packets::TileSamples;
 
@@ -120,6 +121,12 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
     } else {
         Vec::new()
     };
+    // Light samples drawn four shading points at a time where the lights allow it.
+    let lanes = if estimator.stages() && optimal.is_empty() {
+        LightLanes::new(&scene.lights, estimator.lights)
+    } else {
+        None
+    };
     for window in rounds.windows(2) {
         let (s0, s1) = (window[0], window[1]);
         let job = packets::CameraPackets {
@@ -129,6 +136,7 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
             estimator: &estimator,
             optimal: &optimal,
             invalid: &invalid,
+            lanes: lanes.as_ref(),
         };
         if settings.ris_spatial > 0 {
             let job = spatial::Job {

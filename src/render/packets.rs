@@ -19,6 +19,14 @@
 //! 16 % away from the single render: two coplanar faces of different materials, met at
 //! the same distance.) Each sample draws the same numbers as when traced alone, and every
 //! pixel receives its samples in increasing index.
+//!
+//! Where the estimator runs in stages ([`Estimator::stages`]: `mis` with the balance or
+//! power heuristic and one light sample) and some light can be sampled at [`LANES`] shading
+//! points at once ([`LightLanes`]: rectangles under `solid-angle`), a chunk is shaded in three
+//! passes: every sample's hit and light choice ([`Estimator::begin`]), the light samples
+//! (four by four), every sample's score and BSDF samples ([`Estimator::finish`]). The
+//! estimates are the one-at-a-time ones bit for bit; only the light sampling's work is
+//! shared. On a tree of one node the chunk's camera rays are then traced one at a time.
 
 use std::cell::RefCell;
 use std::ops::Range;
@@ -30,8 +38,10 @@ use glam::Vec2;
 use super::{RenderSettings, Tile};
 use crate::geometry::bvh::PACKET;
 use crate::geometry::{Ray, SurfaceHit};
-use crate::integrator::{Estimator, OptimalPixel};
+use crate::integrator::{Begun, Estimator, OptimalPixel};
+use crate::light::{LaneJob, LightLanes, LightSample};
 use crate::math::Spectrum;
+use crate::sampling::warp::LANES;
 use crate::sampling::{Sampler, Uniform};
 use crate::scene::{Camera, Scene};
 
@@ -144,6 +154,10 @@ pub(super) struct CameraPackets<'a> {
     pub optimal: &'a [Mutex<OptimalPixel>],
     /// Samples whose radiance was not finite.
     pub invalid: &'a AtomicU64,
+    /// The lights sampled [`LANES`] shading points at a time, when the estimator
+    /// [`stages`](Estimator::stages) and some light has lanes; else every estimate runs
+    /// whole, one at a time.
+    pub lanes: Option<&'a LightLanes>,
 }
 
 /// Least depth of the scene's BVH (in wide nodes) for which camera rays are traced in
@@ -167,8 +181,9 @@ impl TileSamples for CameraPackets<'_> {
         seed_width: (u64, u32),
         sink: &mut impl FnMut(u32, u32, Vec2, Spectrum),
     ) {
-        if self.scene.geometry.bvh().depth() < MIN_PACKET_DEPTH {
-            // A tree of one node: a packet would save no node tests, only add its set-up.
+        // A tree of one node: a packet would save no node tests, only add its set-up.
+        let single_rays = self.scene.geometry.bvh().depth() < MIN_PACKET_DEPTH;
+        if single_rays && self.lanes.is_none() {
             each_sample(tile, samples, seed_width, |x, y, key, s| {
                 let mut p = self.start(x, y, key, s);
                 let hit = self.scene.geometry.intersect(&p.ray, f32::INFINITY);
@@ -178,9 +193,11 @@ impl TileSamples for CameraPackets<'_> {
             return;
         }
         // A chunk's samples with their camera hits, sample index by sample index (one
-        // packet each), the block's pixels within each.
+        // packet each, or one ray at a time on a tree of one node, where only the staged
+        // shading comes here), the block's pixels within each.
         let mut traced: Vec<(Pending, Option<SurfaceHit>)> =
             Vec::with_capacity(CHUNK as usize * PACKET);
+        let mut stages = Stages::default();
         sample_order(tile, samples, seed_width, |chunk, block| {
             for s in chunk.clone() {
                 let start = traced.len();
@@ -189,13 +206,23 @@ impl TileSamples for CameraPackets<'_> {
                         .iter()
                         .map(|&(x, y, key)| (self.start(x, y, key, s), None)),
                 );
-                self.trace(&mut traced[start..]);
+                if single_rays {
+                    for (p, hit) in &mut traced[start..] {
+                        *hit = self.scene.geometry.intersect(&p.ray, f32::INFINITY);
+                    }
+                } else {
+                    self.trace(&mut traced[start..]);
+                }
             }
             let n = block.len();
-            for lane in 0..n {
-                for (p, hit) in traced[lane..].iter_mut().step_by(n) {
-                    let l = self.radiance(p.x, p.y, &p.ray, hit.as_ref(), &mut p.sampler);
-                    sink(p.x, p.y, p.film, l);
+            if let Some(lanes) = self.lanes {
+                self.shade_in_stages(lanes, &mut traced, n, &mut stages, sink);
+            } else {
+                for lane in 0..n {
+                    for (p, hit) in traced[lane..].iter_mut().step_by(n) {
+                        let l = self.radiance(p.x, p.y, &p.ray, hit.as_ref(), &mut p.sampler);
+                        sink(p.x, p.y, p.film, l);
+                    }
                 }
             }
             traced.clear();
@@ -243,6 +270,83 @@ impl CameraPackets<'_> {
         }
     }
 
+    /// Shades a chunk's traced samples (`n` pixels, in the order of the one-at-a-time
+    /// loop: pixel by pixel, each pixel's samples in increasing index) with the estimate
+    /// in stages: every sample's first stage, then the light samples, those of lights
+    /// with lanes [`LANES`] at a time, then every sample's last stage and its sink. The
+    /// estimates are the one-at-a-time ones bit for bit (see [`Estimator::begin`]).
+    fn shade_in_stages(
+        &self,
+        lanes: &LightLanes,
+        traced: &mut [(Pending, Option<SurfaceHit>)],
+        n: usize,
+        stages: &mut Stages,
+        sink: &mut impl FnMut(u32, u32, Vec2, Spectrum),
+    ) {
+        let (scene, estimator) = (self.scene, self.estimator);
+        let len = traced.len();
+        let order = (0..n).flat_map(move |lane| (lane..len).step_by(n));
+        stages.begun.clear();
+        for i in order.clone() {
+            let (p, hit) = &mut traced[i];
+            let begun = estimator.begin(scene, &p.ray, hit.as_ref(), &mut p.sampler);
+            stages.begun.push(begun);
+        }
+        // The light samples: a light with lanes waits in `batch` for three others.
+        stages.samples.clear();
+        stages.samples.resize(stages.begun.len(), None);
+        let mut batch = [0usize; LANES];
+        let mut waiting = 0;
+        for (k, begun) in stages.begun.iter().enumerate() {
+            let Begun::Light(staged) = begun else {
+                continue;
+            };
+            let Some(sel) = staged.light() else { continue };
+            if lanes.has(sel.index) {
+                batch[waiting] = k;
+                waiting += 1;
+                if waiting == LANES {
+                    sample_batch(
+                        scene,
+                        estimator,
+                        lanes,
+                        &stages.begun,
+                        &batch,
+                        &mut stages.samples,
+                    );
+                    waiting = 0;
+                }
+            } else {
+                let light = &scene.lights[sel.index];
+                stages.samples[k] = light.sample(staged.at(), staged.u_point(), estimator.lights);
+            }
+        }
+        if waiting > 0 {
+            // The last lanes repeat the first; their samples are dropped.
+            let filled: [usize; LANES] = std::array::from_fn(|l| batch[l.min(waiting - 1)]);
+            sample_batch(
+                scene,
+                estimator,
+                lanes,
+                &stages.begun,
+                &filled,
+                &mut stages.samples,
+            );
+        }
+        for (k, i) in order.enumerate() {
+            let (p, hit) = &mut traced[i];
+            let l = match (&stages.begun[k], hit) {
+                (Begun::Light(staged), Some(hit)) => {
+                    let ls = stages.samples[k];
+                    estimator.finish(scene, &p.ray, hit, staged, ls, &mut p.sampler)
+                }
+                (Begun::Done(l), _) => *l,
+                (Begun::Light(_), None) => unreachable!("a staged estimate has a hit"),
+            };
+            sink(p.x, p.y, p.film, self.counted(l));
+        }
+    }
+
     /// The estimate of pixel (x, y)'s sample along camera ray `ray` given its closest hit
     /// (with the pixel's optimal-MIS state under `--mis optimal`); a non-finite estimate
     /// is counted and scored as zero.
@@ -266,12 +370,50 @@ impl CameraPackets<'_> {
             }
             None => estimator.radiance_from(scene, ray, hit, sampler, None),
         };
+        self.counted(l)
+    }
+
+    /// `l`, or zero (counted) when it is not finite.
+    #[inline(always)]
+    fn counted(&self, l: Spectrum) -> Spectrum {
         if l.is_finite() {
             l
         } else {
             self.invalid.fetch_add(1, Ordering::Relaxed);
             Spectrum::ZERO
         }
+    }
+}
+
+/// A chunk's estimates between their stages, kept from chunk to chunk so that no chunk
+/// allocates.
+#[derive(Default)]
+struct Stages {
+    begun: Vec<Begun>,
+    samples: Vec<Option<LightSample>>,
+}
+
+/// The light samples of the staged estimates `begun[batch[l]]`, whose lights all have
+/// lanes, into `samples[batch[l]]`.
+#[inline]
+fn sample_batch(
+    scene: &Scene,
+    estimator: &Estimator,
+    lanes: &LightLanes,
+    begun: &[Begun],
+    batch: &[usize; LANES],
+    samples: &mut [Option<LightSample>],
+) {
+    let jobs: [LaneJob; LANES] = std::array::from_fn(|l| match &begun[batch[l]] {
+        Begun::Light(staged) => {
+            let sel = staged.light().expect("a staged light sample has a light");
+            (sel.index, staged.at(), staged.u_point())
+        }
+        Begun::Done(_) => unreachable!("only staged light samples are batched"),
+    });
+    let drawn = lanes.sample(&scene.lights, estimator.lights, &jobs);
+    for (l, ls) in drawn.into_iter().enumerate() {
+        samples[batch[l]] = ls;
     }
 }
 
@@ -318,10 +460,11 @@ mod tests {
             ("tests/scenes/mesh_obj.xml", false, 0.5),
             ("builtin:veach-mis", true, 0.8),
             ("tests/scenes/tent_point.xml", false, 0.85),
+            ("tests/scenes/microfacet_conductor.xml", false, 0.75),
         ] {
             let scene = load(spec).expect("scene");
-            // Every scene but the last goes through packets; the last keeps single rays.
-            let one_node = spec.ends_with("tent_point.xml");
+            // Every scene but the last two goes through packets; they keep single rays.
+            let one_node = spec.ends_with("tent_point.xml") || spec.contains("microfacet_c");
             let depth = scene.geometry.bvh().depth();
             assert_eq!(depth < MIN_PACKET_DEPTH, one_node, "{spec}: depth {depth}");
             let mut settings = RenderSettings::for_scene(&scene);
@@ -345,6 +488,18 @@ mod tests {
                 (Vec::new(), Vec::new())
             };
             let invalid = AtomicU64::new(0);
+            // The estimates in stages with light samples in lanes where they apply (all
+            // but optimal MIS and the point lights), and whole.
+            let lanes = if estimator.stages() && !optimal_mis {
+                LightLanes::new(&scene.lights, estimator.lights)
+            } else {
+                None
+            };
+            assert_eq!(
+                lanes.is_some(),
+                !optimal_mis && !spec.contains("tent"),
+                "{spec}"
+            );
             let packets = CameraPackets {
                 scene: &scene,
                 settings: &settings,
@@ -352,6 +507,7 @@ mod tests {
                 estimator: &estimator,
                 optimal: &optimal_a,
                 invalid: &invalid,
+                lanes: lanes.as_ref(),
             };
             let single = OneByOne(|x: u32, y: u32, key: u64, s: u32| {
                 let mut sampler = Sampler::for_pixel(settings.sampler, key, s, settings.spp);
@@ -379,6 +535,13 @@ mod tests {
             assert_eq!(a.len(), 24 * 5);
             assert!(a.iter().any(|s| s.3 != [0; 3]), "{spec}: all black");
             assert_eq!(a, b, "{spec}");
+            if lanes.is_some() {
+                let whole = CameraPackets {
+                    lanes: None,
+                    ..packets
+                };
+                assert_eq!(trace(&whole, tile, 3..8, key), b, "{spec} without lanes");
+            }
         }
     }
 
@@ -411,6 +574,8 @@ mod tests {
             .with_mis(settings.mis)
             .with_light_strategy(settings.light_strategy());
         let invalid = AtomicU64::new(0);
+        let lanes = LightLanes::new(&scene.lights, estimator.lights);
+        assert!(lanes.is_some());
         let packets = CameraPackets {
             scene: &scene,
             settings: &settings,
@@ -418,6 +583,7 @@ mod tests {
             estimator: &estimator,
             optimal: &[],
             invalid: &invalid,
+            lanes: lanes.as_ref(),
         };
         let (w, h) = (camera.width, camera.height);
         let key = (settings.seed, w);

@@ -22,9 +22,12 @@ pub use weights::{MisHeuristic, mis_weight};
 use super::light::light_record;
 use super::probe::{ProbeSample, no_direction};
 use super::{Context, emitted_at, f_cos};
+use glam::Vec2;
+
 use crate::bsdf::Bsdf;
 use crate::geometry::{Along, Ray, offset_origin};
-use crate::light::select::LightSelector;
+use crate::light::select::{LightSelector, Selection, Selector};
+use crate::light::{LightSample, ShadingPoint};
 use crate::math::Spectrum;
 use crate::sampling::Uniform;
 use optimal::{BSDF, LIGHT};
@@ -106,6 +109,22 @@ pub(super) fn estimate_with(
             1.0 / n,
         );
     }
+    add_bsdf_samples(ctx, mis, src, sum)
+}
+
+/// `sum` plus the balance or power estimate's BSDF samples.
+#[inline(always)]
+fn add_bsdf_samples(
+    ctx: &Context<'_>,
+    mis: MisSettings,
+    src: &mut impl Uniform,
+    mut sum: Spectrum,
+) -> Spectrum {
+    let (n, m, h) = (
+        mis.light_samples as f32,
+        mis.bsdf_samples as f32,
+        mis.heuristic,
+    );
     // With only delta lights no BSDF-sampled ray can reach an emitter: every BSDF sample
     // is exactly zero (the sampler's later dimensions are not used by this estimate).
     let bsdf_samples = if ctx.traces_bsdf_rays() {
@@ -124,6 +143,57 @@ pub(super) fn estimate_with(
     sum
 }
 
+/// The numbers and the light of one light sample, drawn before the light itself is
+/// sampled: [`light_sample`]'s first step, and what [`super::Estimator::begin`] leaves
+/// for its caller.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct LightDraw {
+    /// The light chosen (`None`: no light can contribute).
+    pub selection: Option<Selection>,
+    /// The two numbers that place the point on it.
+    pub u_point: Vec2,
+}
+
+/// Draws the numbers of one light sample and chooses its light at `at` (which needs
+/// the shading point alone, not its material).
+#[inline(always)]
+pub(super) fn draw_light(
+    selector: &Selector,
+    at: &ShadingPoint,
+    src: &mut impl Uniform,
+) -> LightDraw {
+    let u_select = src.next_1d();
+    let u_point = src.next_2d();
+    LightDraw {
+        selection: selector.select(at, u_select),
+        u_point,
+    }
+}
+
+/// The rest of a balance or power estimate with one light sample, after
+/// [`draw_light`] drew `draw` and the light was sampled (`ls`): the light sample's
+/// score and the BSDF samples, the same as [`estimate`] gives from the same state.
+#[inline(always)]
+pub(super) fn finish(
+    ctx: &Context<'_>,
+    mis: MisSettings,
+    draw: &LightDraw,
+    ls: Option<LightSample>,
+    src: &mut impl Uniform,
+) -> Spectrum {
+    debug_assert!(mis.light_samples == 1 && ctx.ris.is_none());
+    let (n, m, h) = (1.0, mis.bsdf_samples as f32, mis.heuristic);
+    let mut sum = Spectrum::ZERO;
+    sum += score_light_sample(
+        ctx,
+        draw.selection,
+        ls,
+        |pl, pb| mis_weight(h, n * pl, m * pb) / (n * pl),
+        1.0 / n,
+    );
+    add_bsdf_samples(ctx, mis, src, sum)
+}
+
 /// One light sample: `scale(p_light, p_bsdf)` is the factor that multiplies f·cos·Le (the
 /// MIS weight over the density); `delta_scale` multiplies f·cos·Le/pmf for delta lights.
 fn light_sample(
@@ -135,14 +205,24 @@ fn light_sample(
     if let Some(m) = ctx.ris {
         return resampled_light_sample(ctx, src, m, scale, delta_scale);
     }
-    let u_select = src.next_1d();
-    let u_point = src.next_2d();
-    let Some(sel) = ctx.selector.select(ctx.at, u_select) else {
-        ctx.record(|| no_direction("light"));
-        return Spectrum::ZERO;
-    };
-    let light = &ctx.scene.lights[sel.index];
-    let Some(ls) = light.sample(ctx.at, u_point, ctx.lights) else {
+    let draw = draw_light(ctx.selector, ctx.at, src);
+    let ls = draw
+        .selection
+        .and_then(|sel| ctx.scene.lights[sel.index].sample(ctx.at, draw.u_point, ctx.lights));
+    score_light_sample(ctx, draw.selection, ls, scale, delta_scale)
+}
+
+/// A light sample's contribution, given its light `selection` and the light's sample
+/// `ls` (either `None`: nothing).
+#[inline(always)]
+fn score_light_sample(
+    ctx: &Context<'_>,
+    selection: Option<Selection>,
+    ls: Option<LightSample>,
+    scale: impl Fn(f32, f32) -> f32,
+    delta_scale: f32,
+) -> Spectrum {
+    let (Some(sel), Some(ls)) = (selection, ls) else {
         ctx.record(|| no_direction("light"));
         return Spectrum::ZERO;
     };

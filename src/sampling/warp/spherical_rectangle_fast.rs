@@ -10,8 +10,9 @@
 //!   (c00, c11, c01), each by Van Oosterom & Strackee (1983):
 //!   tan(Ω/2) = [a b c] / (|a||b||c| + (a·b)|c| + (a·c)|b| + (b·c)|a|). The triple
 //!   product is |z0|·w·h exactly, so the ratio keeps its relative precision for small
-//!   rectangles (where γ₀ + γ₁ + γ₂ + γ₃ − 2π cancels), and one f32 atan2
-//!   ([`crate::math::atan::atan2`], relative error below 10⁻⁶) per triangle is enough.
+//!   rectangles (where γ₀ + γ₁ + γ₂ + γ₃ − 2π cancels), and one f32 arctangent
+//!   ([`crate::math::atan::atan_unit`] of the smaller of t/|d| and |d|/t, absolute error
+//!   below 4·10⁻⁷ rad) per triangle is enough.
 //! - k = 2π − γ₂ − γ₃ is never formed as an angle: Algorithm 1 needs only sin and cos
 //!   of a_u = k + u₀S, which angle addition gives from sin k, cos k and sin u₀S,
 //!   cos u₀S. cos γ and sin γ are each one product over the same two radii
@@ -28,7 +29,7 @@
 use glam::{DVec3, Vec2, Vec3};
 
 use super::spherical_triangle::MIN_SOLID_ANGLE;
-use crate::math::atan::atan2;
+use crate::math::atan::atan_unit;
 
 /// A rectangle seen from a shading point, ready for uniform solid-angle sampling (see
 /// the module doc); the same map as [`SphericalRectangle`](super::SphericalRectangle).
@@ -68,19 +69,43 @@ struct Local {
     lengths: [f64; 4],
 }
 
-impl Local {
-    /// `None` when the edges are not perpendicular (|cos| > 10⁻⁴, as the f64 version),
-    /// the point lies in the rectangle's plane, or an input is not finite.
-    #[inline(always)]
-    fn new(p: Vec3, corner: Vec3, ex: Vec3, ey: Vec3) -> Option<Local> {
+/// What a rectangle seen from a point owes to the rectangle alone: its unit edge axes,
+/// their normal and the edge lengths. [`FastSphericalRectangle::new`] computes it on every
+/// call; the lanes ([`crate::light::LightLanes`]) once per light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RectangleFrame {
+    pub(super) x: DVec3,
+    pub(super) y: DVec3,
+    pub(super) z: DVec3,
+    pub(super) w: f64,
+    pub(super) h: f64,
+}
+
+impl RectangleFrame {
+    /// `None` when the edges are not perpendicular (|cos| > 10⁻⁴, as the f64 version)
+    /// or not finite.
+    #[inline]
+    pub fn new(ex: Vec3, ey: Vec3) -> Option<RectangleFrame> {
         let (ex, ey) = (ex.as_dvec3(), ey.as_dvec3());
         let (w, h) = (ex.length(), ey.length());
         let (x, y) = (ex / w, ey / h);
         let perpendicular = x.dot(y).abs() <= 1e-4; // false for NaN too
-        if !perpendicular {
-            return None;
-        }
-        let mut z = x.cross(y);
+        perpendicular.then(|| RectangleFrame {
+            x,
+            y,
+            z: x.cross(y),
+            w,
+            h,
+        })
+    }
+}
+
+impl Local {
+    /// The rectangle seen from `p`: `None` when the point lies in the rectangle's plane
+    /// or an input is not finite.
+    #[inline(always)]
+    fn from_frame(f: &RectangleFrame, p: Vec3, corner: Vec3) -> Option<Local> {
+        let RectangleFrame { x, y, mut z, w, h } = *f;
         let d = corner.as_dvec3() - p.as_dvec3();
         let mut z0 = d.dot(z);
         if z0 > 0.0 {
@@ -133,8 +158,9 @@ impl Local {
 
 /// atan2(t, d) for t > 0: for t/d < 0.05 (small triangles) the series
 /// x − x³/3 + x⁵/5 − x⁷/7 + x⁹/9 in f64 (relative error below 10⁻¹³), else the f32
-/// polynomial after scaling both by the larger, so that any f64 magnitude fits
-/// (absolute error 4·10⁻⁷ rad on angles above 0.05).
+/// polynomial of the ratio of the smaller to the larger of t and |d| (one f64 division,
+/// so any f64 magnitude fits; absolute error 4·10⁻⁷ rad on angles above 0.05) and the
+/// octant's reflection. [`super::spherical_rectangle_lanes`] computes the same per lane.
 #[inline(always)]
 fn half_angle(t: f64, d: f64) -> f64 {
     if d > 20.0 * t {
@@ -142,8 +168,13 @@ fn half_angle(t: f64, d: f64) -> f64 {
         let x2 = x * x;
         return x * (1.0 - x2 * (1.0 / 3.0 - x2 * (0.2 - x2 * (1.0 / 7.0 - x2 / 9.0))));
     }
-    let m = t.abs().max(d.abs());
-    atan2((t / m) as f32, (d / m) as f32) as f64
+    let ad = d.abs();
+    let r = if t > ad {
+        std::f64::consts::FRAC_PI_2 - atan_unit((ad / t) as f32) as f64
+    } else {
+        atan_unit((t / ad) as f32) as f64
+    };
+    if d < 0.0 { std::f64::consts::PI - r } else { r }
 }
 
 impl FastSphericalRectangle {
@@ -152,7 +183,18 @@ impl FastSphericalRectangle {
     /// gives `None` (up to the rounding of S at [`MIN_SOLID_ANGLE`]).
     #[inline]
     pub fn new(p: Vec3, corner: Vec3, ex: Vec3, ey: Vec3) -> Option<FastSphericalRectangle> {
-        let l = Local::new(p, corner, ex, ey)?;
+        Self::from_frame(&RectangleFrame::new(ex, ey)?, p, corner)
+    }
+
+    /// [`FastSphericalRectangle::new`] with the rectangle's frame precomputed (the same
+    /// bits).
+    #[inline]
+    pub fn from_frame(
+        frame: &RectangleFrame,
+        p: Vec3,
+        corner: Vec3,
+    ) -> Option<FastSphericalRectangle> {
+        let l = Local::from_frame(frame, p, corner)?;
         let solid_angle = l.solid_angle()?;
         let Local { x0, y0, y1, z0, .. } = l;
         // γ₂ (corner c01): cos = x0·y1/(r_x0 r_y1), sin = |z0|·|c01|/(r_x0 r_y1);
@@ -187,7 +229,13 @@ impl FastSphericalRectangle {
     /// (a light's pdf needs only this).
     #[inline]
     pub fn solid_angle_at(p: Vec3, corner: Vec3, ex: Vec3, ey: Vec3) -> Option<f32> {
-        Local::new(p, corner, ex, ey)?
+        Self::solid_angle_from_frame(&RectangleFrame::new(ex, ey)?, p, corner)
+    }
+
+    /// [`FastSphericalRectangle::solid_angle_at`] with the frame precomputed.
+    #[inline]
+    pub fn solid_angle_from_frame(frame: &RectangleFrame, p: Vec3, corner: Vec3) -> Option<f32> {
+        Local::from_frame(frame, p, corner)?
             .solid_angle()
             .map(|s| s as f32)
     }

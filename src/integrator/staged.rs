@@ -1,0 +1,116 @@
+//! The `mis` estimate in stages, so that a renderer can sample the lights of many
+//! shading points together ([`crate::light::LightLanes`]): [`Estimator::begin`] shades the
+//! camera ray's hit and draws the light sample's numbers and light, the caller samples
+//! that light at [`Staged::at`] with [`Staged::u_point`], and [`Estimator::finish`] scores
+//! the light sample and draws the BSDF samples. Every number is drawn in the order
+//! [`Estimator::radiance_from`] draws it, so the estimate is the same bit for bit.
+//!
+//! Stages apply to the balance and power heuristics with one light sample (the default
+//! and Mitsuba's `direct`), without resampling; [`Estimator::stages`] says when.
+
+use glam::{Vec2, Vec3};
+
+use super::mis::{self, LightDraw};
+use super::{Estimator, EstimatorKind, MisHeuristic, Shading, emitted_at, oriented, shading_point};
+use crate::geometry::{Ray, SurfaceHit};
+use crate::light::select::Selection;
+use crate::light::{LightSample, ShadingPoint};
+use crate::math::Spectrum;
+use crate::sampling::Uniform;
+use crate::scene::Scene;
+
+/// What [`Estimator::begin`] leaves: an estimate already complete, or one waiting for
+/// its light sample.
+pub enum Begun {
+    /// The camera ray escaped, or met a surface from behind: nothing left to sample.
+    Done(Spectrum),
+    /// Waiting for the sample of [`Staged::light`] at [`Staged::at`].
+    Light(Staged),
+}
+
+/// An estimate between [`Estimator::begin`] and [`Estimator::finish`]: small (it waits
+/// in a list with a chunk's others), so [`Estimator::finish`] shades the hit again
+/// rather than keep its material and frame.
+pub struct Staged {
+    emitted: Spectrum,
+    at: ShadingPoint,
+    draw: LightDraw,
+}
+
+impl Staged {
+    /// The light to sample and its selection probability (`None`: no light).
+    #[inline]
+    pub fn light(&self) -> Option<Selection> {
+        self.draw.selection
+    }
+
+    /// The shading point to sample the light at.
+    #[inline]
+    pub fn at(&self) -> &ShadingPoint {
+        &self.at
+    }
+
+    /// The two numbers that place the light's point.
+    #[inline]
+    pub fn u_point(&self) -> Vec2 {
+        self.draw.u_point
+    }
+}
+
+impl Estimator {
+    /// Whether [`Estimator::begin`] and [`Estimator::finish`] apply: the `mis` estimator
+    /// with the balance or power heuristic, one light sample, no resampling.
+    pub fn stages(&self) -> bool {
+        self.kind == EstimatorKind::Mis
+            && matches!(
+                self.mis.heuristic,
+                MisHeuristic::Balance | MisHeuristic::Power
+            )
+            && self.mis.light_samples == 1
+            && self.ris.is_none()
+    }
+
+    /// The first stage of [`Estimator::radiance_from`] along camera ray `ray` with
+    /// closest hit `hit` (see the module doc); only when [`Estimator::stages`].
+    #[inline(always)]
+    pub fn begin(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        hit: Option<&SurfaceHit>,
+        src: &mut impl Uniform,
+    ) -> Begun {
+        debug_assert!(self.stages());
+        let Some(hit) = hit else {
+            return Begun::Done(scene.escaped(ray.d.normalize()));
+        };
+        let w_out: Vec3 = -ray.d.normalize();
+        let emitted = emitted_at(scene, hit, w_out);
+        let Some((hit, _)) = oriented(scene, hit, w_out) else {
+            return Begun::Done(emitted + Spectrum::ZERO);
+        };
+        let at = shading_point(&hit);
+        let draw = mis::draw_light(&self.selector, &at, src);
+        Begun::Light(Staged { emitted, at, draw })
+    }
+
+    /// The last stage, for the same `ray` and `hit` as [`Estimator::begin`], given the
+    /// sample `ls` of `staged`'s light at its shading point (`scene.lights[i].sample(
+    /// staged.at(), staged.u_point(), self.lights)`, or `None` without a light), drawing
+    /// on from `src` where [`Estimator::begin`] left it.
+    #[inline]
+    pub fn finish(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        hit: &SurfaceHit,
+        staged: &Staged,
+        ls: Option<LightSample>,
+        src: &mut impl Uniform,
+    ) -> Spectrum {
+        let w_out = -ray.d.normalize();
+        let sh = Shading::at(scene, hit, w_out).expect("begin found the hit seen from the front");
+        let ctx = self.context(scene, &sh.at, &sh.hit, &sh.material, sh.w_out);
+        staged.emitted + mis::finish(&ctx, self.mis, &staged.draw, ls, src)
+    }
+}
