@@ -1,6 +1,7 @@
 //! The `mis` estimate in stages, so that a renderer can sample the lights of many
-//! shading points together ([`crate::light::LightLanes`]): [`Estimator::begin`] shades the
-//! camera ray's hit and draws the light sample's numbers and light, the caller samples
+//! shading points together ([`crate::light::LightLanes`]): [`Estimator::begin`] turns the
+//! camera ray's hit to the side it is seen from and draws the light sample's numbers and
+//! light, the caller samples
 //! that light at [`Staged::at`] with [`Staged::u_point`], and [`Estimator::finish`] scores
 //! the light sample and draws the BSDF samples. Every number is drawn in the order
 //! [`Estimator::radiance_from`] draws it, so the estimate is the same bit for bit.
@@ -29,8 +30,8 @@ pub enum Begun {
 }
 
 /// An estimate between [`Estimator::begin`] and [`Estimator::finish`]: small (it waits
-/// in a list with a chunk's others), so [`Estimator::finish`] shades the hit again
-/// rather than keep its material and frame.
+/// in a list with a chunk's others), so [`Estimator::finish`] orients the hit again and
+/// finds its material rather than keep them here.
 pub struct Staged {
     emitted: Spectrum,
     at: ShadingPoint,

@@ -54,14 +54,16 @@ impl LightLanes {
         matches!(self.frames.get(index), Some(Some(_)))
     }
 
-    /// `lights[i].sample(at, u, strategy)` for each job `(i, at, u)`, every light `i`
-    /// one that [`LightLanes::has`]; `lights` and `strategy` must be the ones the lanes
-    /// were made with.
+    /// `lights[i].sample(at, u, strategy)` for each of the first `used` jobs `(i, at, u)`
+    /// (`None` for the others, which only fill the lanes), every light `i` one that
+    /// [`LightLanes::has`]; `lights` and `strategy` must be the ones the lanes were made
+    /// with.
     pub fn sample(
         &self,
         lights: &[Light],
         strategy: LightStrategy,
         jobs: &[LaneJob; LANES],
+        used: usize,
     ) -> [Option<LightSample>; LANES] {
         let rectangle = |i: usize| match &lights[i] {
             Light::Area(a) => match &a.shape {
@@ -81,6 +83,9 @@ impl LightLanes {
         });
         let drawn = sample_lanes(&lane);
         std::array::from_fn(|l| {
+            if l >= used {
+                return None;
+            }
             let (i, at, u) = jobs[l];
             let (light, r) = rectangle(i);
             match drawn[l] {
@@ -138,7 +143,11 @@ mod tests {
             });
             let jobs: [LaneJob; LANES] =
                 std::array::from_fn(|l| (with[(k + l) % with.len()], &points[l], rng.next_2d()));
-            let wide = lanes.sample(&scene.lights, strategy, &jobs);
+            let wide = lanes.sample(&scene.lights, strategy, &jobs, LANES);
+            // Fewer jobs than lanes: the rest are None, the first the same.
+            let some = lanes.sample(&scene.lights, strategy, &jobs, 2);
+            assert!(some[2..].iter().all(Option::is_none));
+            assert_eq!(some[..2].len(), 2);
             for (l, got) in wide.iter().enumerate() {
                 let (i, at, u) = jobs[l];
                 let scalar = scene.lights[i].sample(at, u, strategy);

@@ -183,6 +183,11 @@ impl TileSamples for CameraPackets<'_> {
     ) {
         // A tree of one node: a packet would save no node tests, only add its set-up.
         let single_rays = self.scene.geometry.bvh().depth() < MIN_PACKET_DEPTH;
+        // The stages hold only for what `render` checks before it hands over lanes.
+        assert!(
+            self.lanes.is_none() || (self.estimator.stages() && self.optimal.is_empty()),
+            "light lanes need an estimate in stages without optimal-MIS state"
+        );
         if single_rays && self.lanes.is_none() {
             each_sample(tile, samples, seed_width, |x, y, key, s| {
                 let mut p = self.start(x, y, key, s);
@@ -306,12 +311,14 @@ impl CameraPackets<'_> {
                 batch[waiting] = k;
                 waiting += 1;
                 if waiting == LANES {
+                    let begun = &stages.begun;
                     sample_batch(
                         scene,
                         estimator,
                         lanes,
-                        &stages.begun,
+                        begun,
                         &batch,
+                        LANES,
                         &mut stages.samples,
                     );
                     waiting = 0;
@@ -322,14 +329,16 @@ impl CameraPackets<'_> {
             }
         }
         if waiting > 0 {
-            // The last lanes repeat the first; their samples are dropped.
+            // The lanes past the last waiting job repeat it, and their samples are dropped.
             let filled: [usize; LANES] = std::array::from_fn(|l| batch[l.min(waiting - 1)]);
+            let begun = &stages.begun;
             sample_batch(
                 scene,
                 estimator,
                 lanes,
-                &stages.begun,
+                begun,
                 &filled,
+                waiting,
                 &mut stages.samples,
             );
         }
@@ -394,7 +403,7 @@ struct Stages {
 }
 
 /// The light samples of the staged estimates `begun[batch[l]]`, whose lights all have
-/// lanes, into `samples[batch[l]]`.
+/// lanes, into `samples[batch[l]]`, for the first `used` lanes (the others are padding).
 #[inline]
 fn sample_batch(
     scene: &Scene,
@@ -402,6 +411,7 @@ fn sample_batch(
     lanes: &LightLanes,
     begun: &[Begun],
     batch: &[usize; LANES],
+    used: usize,
     samples: &mut [Option<LightSample>],
 ) {
     let jobs: [LaneJob; LANES] = std::array::from_fn(|l| match &begun[batch[l]] {
@@ -411,8 +421,8 @@ fn sample_batch(
         }
         Begun::Done(_) => unreachable!("only staged light samples are batched"),
     });
-    let drawn = lanes.sample(&scene.lights, estimator.lights, &jobs);
-    for (l, ls) in drawn.into_iter().enumerate() {
+    let drawn = lanes.sample(&scene.lights, estimator.lights, &jobs, used);
+    for (l, ls) in drawn.into_iter().enumerate().take(used) {
         samples[batch[l]] = ls;
     }
 }
@@ -449,8 +459,9 @@ mod tests {
     /// Camera packets give every sample the radiance the one-ray-at-a-time path gives it
     /// (the pre-packet renderer's sample, written out here), in the same order, on
     /// scenes of rectangles, spheres and meshes, with a count of samples that is not a
-    /// multiple of the packet and with optimal MIS's per-pixel state; and on a scene whose
-    /// BVH is one node, through the single-ray path.
+    /// multiple of the packet and with optimal MIS's per-pixel state; and on two scenes
+    /// whose BVH is one node, whose rays are traced one at a time. Where the estimate runs
+    /// in stages with light lanes, with them and without.
     #[test]
     fn packets_give_the_samples_of_single_rays() {
         // (scene, optimal MIS, height of the tile's centre as a share of the image's)
@@ -463,7 +474,7 @@ mod tests {
             ("tests/scenes/microfacet_conductor.xml", false, 0.75),
         ] {
             let scene = load(spec).expect("scene");
-            // Every scene but the last two goes through packets; they keep single rays.
+            // Every scene but the last two traces packets; they trace one ray at a time.
             let one_node = spec.ends_with("tent_point.xml") || spec.contains("microfacet_c");
             let depth = scene.geometry.bvh().depth();
             assert_eq!(depth < MIN_PACKET_DEPTH, one_node, "{spec}: depth {depth}");
@@ -576,39 +587,43 @@ mod tests {
         let invalid = AtomicU64::new(0);
         let lanes = LightLanes::new(&scene.lights, estimator.lights);
         assert!(lanes.is_some());
-        let packets = CameraPackets {
-            scene: &scene,
-            settings: &settings,
-            camera: &camera,
-            estimator: &estimator,
-            optimal: &[],
-            invalid: &invalid,
-            lanes: lanes.as_ref(),
-        };
-        let (w, h) = (camera.width, camera.height);
-        let key = (settings.seed, w);
-        // The samples in rounds as the single render takes them (two samples per round)
-        // and as the 3-pass render does (one per round), over the render's 4 × 4 tiles;
-        // and all in one piece over the whole image.
-        let in_rounds = |rounds: &[Range<u32>], tiles: &[Tile]| {
-            let mut out = BTreeMap::new();
-            for samples in rounds {
-                for &tile in tiles {
-                    for (pixel, list) in per_pixel(trace(&packets, tile, samples.clone(), key)) {
-                        out.entry(pixel).or_insert_with(Vec::new).extend(list);
+        // With the light lanes (the estimate in stages) and without.
+        for lanes in [lanes.as_ref(), None] {
+            let packets = CameraPackets {
+                scene: &scene,
+                settings: &settings,
+                camera: &camera,
+                estimator: &estimator,
+                optimal: &[],
+                invalid: &invalid,
+                lanes,
+            };
+            let (w, h) = (camera.width, camera.height);
+            let key = (settings.seed, w);
+            // The samples in rounds as the single render takes them (two samples per
+            // round) and as the 3-pass render does (one per round), over the render's
+            // 4 × 4 tiles; and all in one piece over the whole image.
+            let in_rounds = |rounds: &[Range<u32>], tiles: &[Tile]| {
+                let mut out = BTreeMap::new();
+                for samples in rounds {
+                    for &tile in tiles {
+                        let trace = trace(&packets, tile, samples.clone(), key);
+                        for (pixel, list) in per_pixel(trace) {
+                            out.entry(pixel).or_insert_with(Vec::new).extend(list);
+                        }
                     }
                 }
-            }
-            out
-        };
-        let tiles = super::super::tiles(w, h, 4);
-        let single: Vec<Range<u32>> = (0..6).map(|r| 2 * r..2 * r + 2).collect();
-        let passes: Vec<Range<u32>> = (0..12).map(|s| s..s + 1).collect();
-        let all_at_once = std::slice::from_ref(&(0..12));
-        let whole = in_rounds(all_at_once, &[(0, 0, w, h)]);
-        assert_eq!(whole, in_rounds(&single, &tiles));
-        assert_eq!(whole, in_rounds(&passes, &tiles));
-        assert_eq!(whole.len(), (w * h) as usize);
-        assert!(whole.values().all(|list| list.len() == 12));
+                out
+            };
+            let tiles = super::super::tiles(w, h, 4);
+            let single: Vec<Range<u32>> = (0..6).map(|r| 2 * r..2 * r + 2).collect();
+            let passes: Vec<Range<u32>> = (0..12).map(|s| s..s + 1).collect();
+            let all_at_once = std::slice::from_ref(&(0..12));
+            let whole = in_rounds(all_at_once, &[(0, 0, w, h)]);
+            assert_eq!(whole, in_rounds(&single, &tiles));
+            assert_eq!(whole, in_rounds(&passes, &tiles));
+            assert_eq!(whole.len(), (w * h) as usize);
+            assert!(whole.values().all(|list| list.len() == 12));
+        }
     }
 }

@@ -99,17 +99,23 @@ pub(super) fn estimate_with(
             bsdf_sample(ctx, src, |pb, pl| scale(pl, pb), 1.0 / (1.0 - c_light))
         };
     }
-    let h = mis.heuristic;
     let mut sum = Spectrum::ZERO;
     for _ in 0..mis.light_samples {
-        sum += light.sample(
-            ctx,
-            src,
-            |pl, pb| mis_weight(h, n * pl, m * pb) / (n * pl),
-            1.0 / n,
-        );
+        sum += light.sample(ctx, src, light_scale(mis), 1.0 / n);
     }
     add_bsdf_samples(ctx, mis, src, sum)
+}
+
+/// The factor on a light sample's f·cos·Le under the balance or power heuristic: its MIS
+/// weight over its effective density n·p_light.
+#[inline(always)]
+fn light_scale(mis: MisSettings) -> impl Fn(f32, f32) -> f32 {
+    let (n, m, h) = (
+        mis.light_samples as f32,
+        mis.bsdf_samples as f32,
+        mis.heuristic,
+    );
+    move |pl, pb| mis_weight(h, n * pl, m * pb) / (n * pl)
 }
 
 /// `sum` plus the balance or power estimate's BSDF samples.
@@ -182,15 +188,8 @@ pub(super) fn finish(
     src: &mut impl Uniform,
 ) -> Spectrum {
     debug_assert!(mis.light_samples == 1 && ctx.ris.is_none());
-    let (n, m, h) = (1.0, mis.bsdf_samples as f32, mis.heuristic);
     let mut sum = Spectrum::ZERO;
-    sum += score_light_sample(
-        ctx,
-        draw.selection,
-        ls,
-        |pl, pb| mis_weight(h, n * pl, m * pb) / (n * pl),
-        1.0 / n,
-    );
+    sum += score_light_sample(ctx, draw.selection, ls, light_scale(mis), 1.0);
     add_bsdf_samples(ctx, mis, src, sum)
 }
 

@@ -234,7 +234,7 @@ impl FastSphericalRectangle {
 
     /// [`FastSphericalRectangle::solid_angle_at`] with the frame precomputed.
     #[inline]
-    pub fn solid_angle_from_frame(frame: &RectangleFrame, p: Vec3, corner: Vec3) -> Option<f32> {
+    fn solid_angle_from_frame(frame: &RectangleFrame, p: Vec3, corner: Vec3) -> Option<f32> {
         Local::from_frame(frame, p, corner)?
             .solid_angle()
             .map(|s| s as f32)
