@@ -5,6 +5,7 @@ mod packets;
 mod settings;
 mod spatial;
 mod splat;
+mod staged;
 
 pub use crate::settings::{Pass, SampleBlock};
 pub use settings::RenderSettings;
@@ -18,7 +19,6 @@ use rayon::prelude::*;
 
 use crate::image::{Film, PixelStats};
 use crate::integrator::{Estimator, EstimatorKind, MisHeuristic, OptimalPixel};
-use crate::light::LightLanes;
 use crate::scene::Scene;
 use packets::TileSamples;
 
@@ -122,11 +122,7 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
         Vec::new()
     };
     // Light samples drawn four shading points at a time where the lights allow it.
-    let lanes = if estimator.stages() && optimal.is_empty() {
-        LightLanes::new(&scene.lights, estimator.lights)
-    } else {
-        None
-    };
+    let lanes = staged::light_lanes(scene, &estimator);
     for window in rounds.windows(2) {
         let (s0, s1) = (window[0], window[1]);
         let job = packets::CameraPackets {

@@ -229,13 +229,7 @@ impl FastSphericalRectangle {
     /// (a light's pdf needs only this).
     #[inline]
     pub fn solid_angle_at(p: Vec3, corner: Vec3, ex: Vec3, ey: Vec3) -> Option<f32> {
-        Self::solid_angle_from_frame(&RectangleFrame::new(ex, ey)?, p, corner)
-    }
-
-    /// [`FastSphericalRectangle::solid_angle_at`] with the frame precomputed.
-    #[inline]
-    fn solid_angle_from_frame(frame: &RectangleFrame, p: Vec3, corner: Vec3) -> Option<f32> {
-        Local::from_frame(frame, p, corner)?
+        Local::from_frame(&RectangleFrame::new(ex, ey)?, p, corner)?
             .solid_angle()
             .map(|s| s as f32)
     }
