@@ -8,7 +8,7 @@
 use glam::Vec2;
 
 use super::rng::{Rng32, hash_words, mix64};
-use super::sobol::{sobol_1d_rev, sobol_2d_rev};
+use super::sobol::{SobolSeed, sobol_1d_seeded, sobol_2d_seeded};
 
 /// A source of uniform numbers in [0, 1). Rejection samplers draw from one of these.
 pub trait Uniform {
@@ -36,6 +36,54 @@ pub use crate::settings::SamplerKind;
 /// later samples fall back to independent numbers.
 pub const SOBOL_MAX_SAMPLES: u32 = 1 << 16;
 
+/// Dimensions whose Sobol seeds a [`PixelStreams`] hashes once per pixel: the first four,
+/// which the default estimate draws (film position, light choice, light point, BSDF
+/// direction). Later dimensions are hashed per sample.
+pub const SEEDED_DIMENSIONS: usize = 4;
+
+/// The part of a pixel's sampler streams that every sample of the pixel shares: its key
+/// and, for `sobol`, the hashed seeds of its first [`SEEDED_DIMENSIONS`] dimensions (each
+/// dimension's seed depends on the pixel alone, Burley 2020 §4, so its three hashes need
+/// not be redone for every sample). [`Sampler::for_streams`] draws the same numbers as
+/// [`Sampler::for_pixel`] with the same key.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct PixelStreams {
+    key: u64,
+    seeded: u32,
+    sobol: [SobolSeed; SEEDED_DIMENSIONS],
+}
+
+impl PixelStreams {
+    /// The streams of pixel `pixel` (a linear index) under `seed` for a sampler of `kind`.
+    pub fn new(kind: SamplerKind, seed: u64, pixel: u64) -> PixelStreams {
+        let key = Sampler::pixel_key(seed, pixel);
+        let sobol = kind == SamplerKind::Sobol;
+        PixelStreams {
+            key,
+            seeded: if sobol { SEEDED_DIMENSIONS as u32 } else { 0 },
+            sobol: std::array::from_fn(|d| {
+                if sobol {
+                    SobolSeed::new(dimension_key(key, d as u32) as u32)
+                } else {
+                    SobolSeed::default()
+                }
+            }),
+        }
+    }
+
+    /// The pixel's key ([`Sampler::pixel_key`]).
+    #[inline]
+    pub fn key(&self) -> u64 {
+        self.key
+    }
+}
+
+/// The key of dimension `dimension` of the pixel whose key is `pixel_key`.
+#[inline(always)]
+fn dimension_key(pixel_key: u64, dimension: u32) -> u64 {
+    mix64(pixel_key ^ (dimension as u64).wrapping_mul(0x9e37_79b9))
+}
+
 /// The uniform numbers of one pixel sample. Each call to `next_*` moves to the next
 /// dimension.
 #[derive(Clone, Debug)]
@@ -52,6 +100,9 @@ pub struct Sampler {
     rng: Rng32,
     /// The 2D stratification of `spp` cells (stratified sampler only).
     rows: EqualAreaRows,
+    /// The hashed Sobol seeds of the first `seeded` dimensions (see [`PixelStreams`]).
+    seeded: u32,
+    sobol: [SobolSeed; SEEDED_DIMENSIONS],
 }
 
 impl Sampler {
@@ -71,6 +122,23 @@ impl Sampler {
     /// [`Sampler::new`] for the pixel whose [`Sampler::pixel_key`] is `pixel_key`.
     #[inline]
     pub fn for_pixel(kind: SamplerKind, pixel_key: u64, sample_index: u32, spp: u32) -> Sampler {
+        let streams = PixelStreams {
+            key: pixel_key,
+            ..PixelStreams::default()
+        };
+        Self::for_streams(kind, &streams, sample_index, spp)
+    }
+
+    /// [`Sampler::for_pixel`] for the pixel whose streams are `streams` (made for the
+    /// same `kind`), with its seeds hashed already.
+    #[inline]
+    pub fn for_streams(
+        kind: SamplerKind,
+        streams: &PixelStreams,
+        sample_index: u32,
+        spp: u32,
+    ) -> Sampler {
+        let pixel_key = streams.key;
         let kind = match kind {
             SamplerKind::Sobol if sample_index >= SOBOL_MAX_SAMPLES => SamplerKind::Independent,
             SamplerKind::Stratified if sample_index >= spp => SamplerKind::Independent,
@@ -99,6 +167,12 @@ impl Sampler {
             } else {
                 Rng32::new(hash_words(&[pixel_key, sample_index as u64]))
             },
+            seeded: if kind == SamplerKind::Sobol {
+                streams.seeded
+            } else {
+                0
+            },
+            sobol: streams.sobol,
         }
     }
 
@@ -109,9 +183,22 @@ impl Sampler {
 
     #[inline]
     fn dimension_key(&mut self) -> u64 {
-        let key = mix64(self.pixel_key ^ (self.dimension as u64).wrapping_mul(0x9e37_79b9));
+        let key = dimension_key(self.pixel_key, self.dimension);
         self.dimension += 1;
         key
+    }
+
+    /// The hashed Sobol seed of the next dimension: from the pixel's streams where they
+    /// hold it, else hashed here.
+    #[inline(always)]
+    fn sobol_seed(&mut self) -> SobolSeed {
+        let d = self.dimension;
+        if d < self.seeded {
+            self.dimension += 1;
+            self.sobol[d as usize]
+        } else {
+            SobolSeed::new(self.dimension_key() as u32)
+        }
     }
 
     /// The jittered stratum of this sample in a 1D or 2D pattern of `spp` cells.
@@ -134,8 +221,8 @@ impl Uniform for Sampler {
             SamplerKind::Sobol => {
                 // Padding by reseeding (Burley 2020 §4): dimension 0 of a fresh
                 // shuffled, scrambled sequence for every 1D request.
-                let seed = self.dimension_key() as u32;
-                sobol_1d_rev(self.index_rev, seed)
+                let seed = self.sobol_seed();
+                sobol_1d_seeded(self.index_rev, &seed)
             }
         }
     }
@@ -152,8 +239,8 @@ impl Uniform for Sampler {
             SamplerKind::Sobol => {
                 // Dimensions 0 and 1 of Sobol form a (0,2)-sequence: every 2D request
                 // uses that pair under its own seed.
-                let seed = self.dimension_key() as u32;
-                sobol_2d_rev(self.index_rev, seed)
+                let seed = self.sobol_seed();
+                sobol_2d_seeded(self.index_rev, &seed)
             }
         }
     }
@@ -309,6 +396,38 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// A sampler made from a pixel's streams draws what one made from the pixel's key
+    /// draws, for every kind, past the seeded dimensions and past Sobol's last index.
+    #[test]
+    fn streams_draw_what_the_key_draws() {
+        for kind in SamplerKind::ALL {
+            for pixel in [0u64, 5, 1 << 20] {
+                let streams = PixelStreams::new(kind, 11, pixel);
+                assert_eq!(streams.key(), Sampler::pixel_key(11, pixel));
+                for s in [0u32, 1, 7, 63, SOBOL_MAX_SAMPLES] {
+                    let mut a = Sampler::new(kind, 11, pixel, s, 64);
+                    let mut b = Sampler::for_streams(kind, &streams, s, 64);
+                    for d in 0..3 * SEEDED_DIMENSIONS {
+                        let (x, y) = if d % 3 == 1 {
+                            (Vec2::splat(a.next_1d()), Vec2::splat(b.next_1d()))
+                        } else {
+                            (a.next_2d(), b.next_2d())
+                        };
+                        assert_eq!(
+                            x.to_array().map(f32::to_bits),
+                            y.to_array().map(f32::to_bits)
+                        );
+                    }
+                }
+            }
+        }
+        // The seeds are hashed for Sobol only, and differ from dimension to dimension.
+        let sobol = PixelStreams::new(SamplerKind::Sobol, 11, 5);
+        assert_eq!(sobol.seeded, SEEDED_DIMENSIONS as u32);
+        assert_ne!(sobol.sobol[0], sobol.sobol[1]);
+        assert_eq!(PixelStreams::new(SamplerKind::Stratified, 11, 5).seeded, 0);
     }
 
     #[test]

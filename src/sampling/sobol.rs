@@ -44,23 +44,45 @@ const SCRAMBLE: [u32; 2] = [0x912f_69ba, 0x174f_18ab];
 const SEED_MULTIPLIER: u32 = 0x9c8f_2d3b;
 const SHUFFLE_SALT: u32 = 0x79c6_8e4a;
 
+/// The hashes of one seed that a Sobol point needs before it looks at the index: the
+/// index shuffle's scramble (Burley 2020 §3) and each dimension's (§2). They depend on
+/// the seed alone, so a sampler whose seeds repeat from sample to sample (a pixel's
+/// dimensions, see [`crate::sampling::sampler::PixelStreams`]) hashes them once.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SobolSeed {
+    shuffle: u32,
+    scramble: [u32; 2],
+}
+
+impl SobolSeed {
+    /// The hashes of `seed`.
+    #[inline(always)]
+    pub fn new(seed: u32) -> SobolSeed {
+        let scramble = |d: usize| hash(seed.wrapping_mul(SEED_MULTIPLIER) ^ SCRAMBLE[d]);
+        SobolSeed {
+            shuffle: hash(seed ^ SHUFFLE_SALT),
+            scramble: [scramble(0), scramble(1)],
+        }
+    }
+}
+
 /// The Owen-scrambled shuffle of the sample index (Burley 2020 §3), given bit-reversed
 /// (`index.reverse_bits()`), split into the byte-table indices of its top 16 bits.
-#[inline]
-fn shuffled_bytes(index_rev: u32, seed: u32) -> (usize, usize) {
-    let shuffled = owen_scramble_rev(index_rev, hash(seed ^ SHUFFLE_SALT));
+#[inline(always)]
+fn shuffled_bytes(index_rev: u32, seed: &SobolSeed) -> (usize, usize) {
+    let shuffled = owen_scramble_rev(index_rev, seed.shuffle);
     (
         (shuffled >> 24) as usize,
         ((shuffled >> 16) & 0xff) as usize,
     )
 }
 
-/// Dimension `d` (0 or 1) of the shuffled index, Owen-scrambled (Burley 2020 §2).
-#[inline]
-fn dimension(t: &Tables, d: usize, (high, low): (usize, usize), seed: u32) -> f32 {
+/// Dimension `d` (0 or 1) of the shuffled index, Owen-scrambled (Burley 2020 §2), still
+/// bit-reversed.
+#[inline(always)]
+fn dimension_rev(t: &Tables, d: usize, (high, low): (usize, usize), seed: &SobolSeed) -> u32 {
     let sobol = t.high[d][high] ^ t.low[d][low];
-    let scramble = hash(seed.wrapping_mul(SEED_MULTIPLIER) ^ SCRAMBLE[d]);
-    u32_to_f32_norm(owen_scramble_rev(sobol, scramble).reverse_bits())
+    owen_scramble_rev(sobol, seed.scramble[d])
 }
 
 /// `sobol_burley::sample(index, 0, seed)`. `index` must be below 2¹⁶.
@@ -80,14 +102,36 @@ pub fn sobol_2d(index: u32, seed: u32) -> Vec2 {
 /// sample index once for all its dimensions (x86-64 has no bit-reversal instruction).
 #[inline]
 pub fn sobol_1d_rev(index_rev: u32, seed: u32) -> f32 {
-    dimension(tables(), 0, shuffled_bytes(index_rev, seed), seed)
+    sobol_1d_seeded(index_rev, &SobolSeed::new(seed))
 }
 
 /// [`sobol_2d`] of the index whose bit reversal is `index_rev`.
 #[inline]
 pub fn sobol_2d_rev(index_rev: u32, seed: u32) -> Vec2 {
+    sobol_2d_seeded(index_rev, &SobolSeed::new(seed))
+}
+
+/// [`sobol_1d_rev`] under a seed already hashed ([`SobolSeed::new`]).
+#[inline]
+pub fn sobol_1d_seeded(index_rev: u32, seed: &SobolSeed) -> f32 {
+    u32_to_f32_norm(
+        dimension_rev(tables(), 0, shuffled_bytes(index_rev, seed), seed).reverse_bits(),
+    )
+}
+
+/// [`sobol_2d_rev`] under a seed already hashed ([`SobolSeed::new`]).
+#[inline]
+pub fn sobol_2d_seeded(index_rev: u32, seed: &SobolSeed) -> Vec2 {
     let (t, bytes) = (tables(), shuffled_bytes(index_rev, seed));
-    Vec2::new(dimension(t, 0, bytes, seed), dimension(t, 1, bytes, seed))
+    // Both dimensions reversed by one 64-bit reversal (x86-64 has no instruction for
+    // it, so it costs a dozen), which also swaps them.
+    let x = dimension_rev(t, 0, bytes, seed) as u64;
+    let y = dimension_rev(t, 1, bytes, seed) as u64;
+    let both = (x | y << 32).reverse_bits();
+    Vec2::new(
+        u32_to_f32_norm((both >> 32) as u32),
+        u32_to_f32_norm(both as u32),
+    )
 }
 
 #[cfg(test)]

@@ -38,7 +38,8 @@ use crate::geometry::{Ray, SurfaceHit};
 use crate::integrator::{Estimator, OptimalPixel};
 use crate::light::LightLanes;
 use crate::math::Spectrum;
-use crate::sampling::{Sampler, Uniform};
+use crate::sampling::sampler::PixelStreams;
+use crate::sampling::{Sampler, SamplerKind, Uniform};
 use crate::scene::{Camera, Scene};
 
 /// Samples of a tile, handed out in [`sample_order`].
@@ -62,8 +63,8 @@ pub(super) const BLOCK_WIDTH: u32 = 4;
 pub(super) const BLOCK_HEIGHT: u32 = 2;
 const _: () = assert!((BLOCK_WIDTH * BLOCK_HEIGHT) as usize == PACKET);
 
-/// A pixel of a block: (x, y, the key of its sampler streams).
-type BlockPixel = (u32, u32, u64);
+/// A pixel of a block: (x, y, its sampler streams).
+type BlockPixel = (u32, u32, PixelStreams);
 
 /// Sample indices per chunk. A pixel's samples of a chunk are shaded one after another:
 /// they share their surface, material and lights, which keeps the caches and branch
@@ -73,7 +74,7 @@ type BlockPixel = (u32, u32, u64);
 const CHUNK: u32 = 8;
 
 /// Calls `f(sample indices, block)` for samples `samples` of every pixel of `tile` (of an
-/// image `width` pixels wide, streams keyed by `seed`): for each [`BLOCK_WIDTH`] ×
+/// image `width` pixels wide, streams of a `kind` sampler keyed by `seed`): for each [`BLOCK_WIDTH`] ×
 /// [`BLOCK_HEIGHT`] block of the image that the tile covers (blocks aligned to the image,
 /// row by row; the tile's part of it, pixels row by row), the samples in chunks of
 /// [`CHUNK`] consecutive indices.
@@ -82,15 +83,17 @@ fn sample_order(
     (x0, y0, x1, y1): Tile,
     samples: Range<u32>,
     (seed, width): (u64, u32),
+    kind: SamplerKind,
     mut f: impl FnMut(Range<u32>, &[BlockPixel]),
 ) {
     for by in (y0 - y0 % BLOCK_HEIGHT..y1).step_by(BLOCK_HEIGHT as usize) {
         for bx in (x0 - x0 % BLOCK_WIDTH..x1).step_by(BLOCK_WIDTH as usize) {
-            let mut block = [(0, 0, 0); PACKET];
+            let mut block = [(0, 0, PixelStreams::default()); PACKET];
             let mut n = 0;
             for y in by.max(y0)..(by + BLOCK_HEIGHT).min(y1) {
                 for x in bx.max(x0)..(bx + BLOCK_WIDTH).min(x1) {
-                    block[n] = (x, y, Sampler::pixel_key(seed, (y * width + x) as u64));
+                    let pixel = (y * width + x) as u64;
+                    block[n] = (x, y, PixelStreams::new(kind, seed, pixel));
                     n += 1;
                 }
             }
@@ -101,20 +104,21 @@ fn sample_order(
     }
 }
 
-/// Calls `f(x, y, pixel key, sample index)` for every sample of [`sample_order`], one at
-/// a time: block by block, chunk by chunk, within a chunk pixel by pixel (the order the
-/// packet path shades them in).
+/// Calls `f(x, y, pixel streams, sample index)` for every sample of [`sample_order`],
+/// one at a time: block by block, chunk by chunk, within a chunk pixel by pixel (the
+/// order the packet path shades them in).
 #[inline(always)]
 fn each_sample(
     tile: Tile,
     samples: Range<u32>,
     seed_width: (u64, u32),
-    mut f: impl FnMut(u32, u32, u64, u32),
+    kind: SamplerKind,
+    mut f: impl FnMut(u32, u32, &PixelStreams, u32),
 ) {
-    sample_order(tile, samples, seed_width, |chunk, block| {
-        for &(x, y, key) in block {
+    sample_order(tile, samples, seed_width, kind, |chunk, block| {
+        for (x, y, streams) in block {
             for s in chunk.clone() {
-                f(x, y, key, s);
+                f(*x, *y, streams, s);
             }
         }
     });
@@ -132,8 +136,10 @@ impl<F: Fn(u32, u32, u64, u32) -> (Vec2, Spectrum) + Sync> TileSamples for OneBy
         seed_width: (u64, u32),
         sink: &mut impl FnMut(u32, u32, Vec2, Spectrum),
     ) {
-        each_sample(tile, samples, seed_width, |x, y, key, s| {
-            let (p, l) = (self.0)(x, y, key, s);
+        // Only the pixel's key is handed on: streams without hashed seeds.
+        let keys_only = SamplerKind::Independent;
+        each_sample(tile, samples, seed_width, keys_only, |x, y, streams, s| {
+            let (p, l) = (self.0)(x, y, streams.key(), s);
             sink(x, y, p, l);
         });
     }
@@ -184,9 +190,10 @@ impl TileSamples for CameraPackets<'_> {
             self.lanes.is_none() || self.estimator.stages(),
             "light lanes need an estimate in stages"
         );
+        let kind = self.settings.sampler;
         if single_rays && self.lanes.is_none() {
-            each_sample(tile, samples, seed_width, |x, y, key, s| {
-                let mut p = self.start(x, y, key, s);
+            each_sample(tile, samples, seed_width, kind, |x, y, streams, s| {
+                let mut p = self.start(x, y, streams, s);
                 let hit = self.scene.geometry.intersect(&p.ray, f32::INFINITY);
                 let l = self.radiance(x, y, &p.ray, hit.as_ref(), &mut p.sampler);
                 sink(x, y, p.film, l);
@@ -199,13 +206,13 @@ impl TileSamples for CameraPackets<'_> {
         let mut traced: Vec<(Pending, Option<SurfaceHit>)> =
             Vec::with_capacity(CHUNK as usize * PACKET);
         let mut stages = Stages::default();
-        sample_order(tile, samples, seed_width, |chunk, block| {
+        sample_order(tile, samples, seed_width, kind, |chunk, block| {
             for s in chunk.clone() {
                 let start = traced.len();
                 traced.extend(
                     block
                         .iter()
-                        .map(|&(x, y, key)| (self.start(x, y, key, s), None)),
+                        .map(|(x, y, streams)| (self.start(*x, *y, streams, s), None)),
                 );
                 if single_rays {
                     for (p, hit) in &mut traced[start..] {
@@ -232,11 +239,12 @@ impl TileSamples for CameraPackets<'_> {
 }
 
 impl CameraPackets<'_> {
-    /// Sample `s` of pixel (x, y) (pixel key `key`): its stream, after the film position
-    /// it draws first, and its camera ray.
+    /// Sample `s` of pixel (x, y) (its streams `streams`): its stream, after the film
+    /// position it draws first, and its camera ray.
     #[inline(always)]
-    fn start(&self, x: u32, y: u32, key: u64, s: u32) -> Pending {
-        let mut sampler = Sampler::for_pixel(self.settings.sampler, key, s, self.settings.spp);
+    fn start(&self, x: u32, y: u32, streams: &PixelStreams, s: u32) -> Pending {
+        let (kind, spp) = (self.settings.sampler, self.settings.spp);
+        let mut sampler = Sampler::for_streams(kind, streams, s, spp);
         let film = Vec2::new(x as f32, y as f32) + sampler.next_2d();
         Pending {
             x,
