@@ -41,7 +41,8 @@ enum Radiance {
     Constant(Spectrum),
     Map {
         image: LatLongImage,
-        distribution: PiecewiseConstant2D,
+        /// Boxed: the `Constant` variant is a few bytes.
+        distribution: Box<PiecewiseConstant2D>,
         /// The MIS-compensated distribution (Karlík et al. 2019), if any cell keeps
         /// weight after the average is subtracted.
         compensated: Option<PiecewiseConstant2D>,
@@ -214,7 +215,8 @@ impl Environment {
         let rows = image.height - 1;
         let (weights, integral) = image.cell_weights();
         let distribution = PiecewiseConstant2D::new(&weights, image.width, rows)
-            .map_err(|e| format!("environment sampling distribution: {e:?}"))?;
+            .map_err(|e| format!("environment sampling distribution: {e:?}"))?
+            .into();
         let compensated = image
             .compensated_weights()
             .and_then(|w| PiecewiseConstant2D::new(&w, image.width, rows).ok());

@@ -1,5 +1,8 @@
 //! The lecture's "stacked rectangles": a piecewise-constant pdf on [0, 1) with n equal
 //! bins, sampled by binary search in its CDF (pbrt-v4 §A.4.1, `PiecewiseConstant1D`).
+//! A guide table (Chen & Asau 1974, "On generating random variates from an empirical
+//! distribution", AIIE Transactions 6(2)) narrows the search to the few CDF entries in
+//! u's stretch of [0, 1); the bin found is the plain search's.
 
 use glam::Vec2;
 
@@ -17,6 +20,10 @@ pub struct PiecewiseConstant1D {
     cdf: Vec<f32>,
     /// Σ w_j / n: the integral of the unnormalised step function over [0, 1).
     integral: f32,
+    /// The guide table: for k = 0..=G (G a power of two), the number of entries of
+    /// cdf[1..] that are ≤ k/G. A u in [k/G, (k+1)/G) has its bin between guide[k] and
+    /// guide[k + 1]; G ≥ n, so that stretch holds one CDF entry on average.
+    guide: Vec<u32>,
 }
 
 impl PiecewiseConstant1D {
@@ -43,10 +50,12 @@ impl PiecewiseConstant1D {
                 (running / denominator) as f32
             });
         }
+        let guide = guide_table(&cdf);
         Ok(PiecewiseConstant1D {
             weights: weights.to_vec(),
             cdf,
             integral: (total / n as f64) as f32,
+            guide,
         })
     }
 
@@ -88,15 +97,13 @@ impl PiecewiseConstant1D {
     }
 
     /// Picks a bin by one uniform number: the first bin whose CDF interval
-    /// [cdf_i, cdf_{i+1}) holds `u` (binary search; zero-weight bins have empty
-    /// intervals and are never chosen). Returns (index, pmf, u rescaled to [0, 1) within
-    /// the chosen interval, so it can be used again).
+    /// [cdf_i, cdf_{i+1}) holds `u` (binary search, narrowed by the guide table;
+    /// zero-weight bins have empty intervals and are never chosen). Returns (index, pmf,
+    /// u rescaled to [0, 1) within the chosen interval, so it can be used again).
+    #[inline]
     pub fn sample_discrete(&self, u: f32) -> (usize, f32, f32) {
         let u = u.clamp(0.0, ONE_MINUS_EPSILON);
-        // partition_point: number of CDF entries ≤ u among cdf[1..]; that is the bin.
-        let index = self.cdf[1..]
-            .partition_point(|&c| c <= u)
-            .min(self.len() - 1);
+        let index = self.guided_search(u).min(self.len() - 1);
         let (lo, hi) = (self.cdf[index], self.cdf[index + 1]);
         let u_reused = if hi > lo {
             ((u - lo) / (hi - lo)).clamp(0.0, ONE_MINUS_EPSILON)
@@ -104,6 +111,27 @@ impl PiecewiseConstant1D {
             0.0
         };
         (index, hi - lo, u_reused)
+    }
+
+    /// The number of entries of cdf[1..] that are ≤ `u`, by binary search over the
+    /// whole CDF (the lecture's version).
+    #[inline]
+    fn search(&self, u: f32) -> usize {
+        self.cdf[1..].partition_point(|&c| c <= u)
+    }
+
+    /// [`Self::search`] of `u` ∈ [0, 1) (or NaN), searching only between the guide
+    /// table's bounds for u's stretch: k/G ≤ u < (k+1)/G holds exactly for k = ⌊u·G⌋
+    /// because G is a power of two (u·G is exact), so guide[k] ≤ count ≤ guide[k + 1].
+    #[inline]
+    fn guided_search(&self, u: f32) -> usize {
+        let g = self.guide.len() - 1;
+        let k = (u * g as f32) as usize;
+        if k >= g || u.is_nan() {
+            return self.search(u);
+        }
+        let (lo, hi) = (self.guide[k] as usize, self.guide[k + 1] as usize);
+        lo + self.cdf[1 + lo..1 + hi].partition_point(|&c| c <= u)
     }
 
     /// The lecture's two-number variant: u₀ picks the rectangle, u₁ places x uniformly
@@ -143,6 +171,23 @@ impl PiecewiseConstant1D {
     }
 }
 
+/// The guide table of `cdf` (see [`PiecewiseConstant1D`]'s `guide`): G + 1 counts, G
+/// the power of two at or above the number of bins (at most 2²⁴, so that k/G is exact).
+fn guide_table(cdf: &[f32]) -> Vec<u32> {
+    let bins = cdf.len() - 1;
+    let g = bins.next_power_of_two().min(1 << 24);
+    let mut guide = Vec::with_capacity(g + 1);
+    let mut count = 0;
+    for k in 0..=g {
+        let bound = k as f32 / g as f32;
+        while count < bins && cdf[1 + count] <= bound {
+            count += 1;
+        }
+        guide.push(count as u32);
+    }
+    guide
+}
+
 /// The point at fraction `t` ∈ [0, 1) of bin `index` of `n` equal bins of [0, 1):
 /// (index + t)/n, stepped down if rounding carried it into the next bin, so that
 /// ⌊x·n⌋ = index always holds in f32.
@@ -157,6 +202,45 @@ pub fn point_in_bin(index: usize, t: f32, n: usize) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The guided search finds the plain search's bin for every u that matters: each
+    /// CDF entry and its neighbouring floats, the stretch bounds k/G and theirs, and a
+    /// sweep, on tables with zero bins, ties and uneven weights.
+    #[test]
+    fn guide_finds_the_searched_bin() {
+        let mut rng = crate::sampling::Rng32::new(5);
+        let tables: Vec<Vec<f32>> = vec![
+            vec![1.0],
+            vec![0.0, 0.0, 1.0],
+            vec![0.0, 2.0, 0.0, 0.0, 1.0, 0.0],
+            vec![1e-30, 1.0, 1e-30, 1e-30, 3.0],
+            (0..1000).map(|i| ((i * 7919) % 13) as f32).collect(),
+            (0..33).map(|_| rng.next_f32().powi(8)).collect(),
+            vec![0.0; 17],
+        ];
+        let near = |x: f32| {
+            let b = x.to_bits();
+            [
+                f32::from_bits(b.saturating_sub(1)),
+                x,
+                f32::from_bits(b + 1),
+            ]
+        };
+        for weights in &tables {
+            let d = PiecewiseConstant1D::new(weights).expect("valid");
+            let g = d.guide.len() - 1;
+            assert!(g >= d.len() && g.is_power_of_two());
+            let mut us: Vec<f32> = d.cdf.iter().flat_map(|&c| near(c)).collect();
+            us.extend((0..=g).flat_map(|k| near(k as f32 / g as f32)));
+            us.extend((0..10_000).map(|i| i as f32 / 10_000.0));
+            us.extend((0..10_000).map(|_| rng.next_f32()));
+            for u in us {
+                let u = u.clamp(0.0, ONE_MINUS_EPSILON);
+                assert_eq!(d.guided_search(u), d.search(u), "u = {u} of {weights:?}");
+            }
+            assert_eq!(d.guided_search(f32::NAN), d.search(f32::NAN));
+        }
+    }
 
     #[test]
     fn zero_bins_are_never_chosen() {
