@@ -18,8 +18,11 @@ pub struct SurfaceHit {
     pub ng: Vec3,
     /// Shading frame; `frame.n` is the shading normal, on the same side as `ng`.
     pub frame: Frame,
-    /// Texture coordinates.
-    pub uv: Vec2,
+    /// The shape's hit parameters ([`ShapeHit::uv`](crate::geometry::shape::ShapeHit::uv): a
+    /// triangle's barycentrics b1, b2, a rectangle's (u, v), zero on spheres and disks).
+    /// Texture coordinates cost an `atan2` or two on curved shapes, so only a textured
+    /// material asks for them ([`Geometry::texture_uv`](crate::geometry::Geometry::texture_uv)).
+    pub shape_uv: Vec2,
     /// Index of the primitive in the scene geometry.
     pub prim: u32,
     /// Material index.

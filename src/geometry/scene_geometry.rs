@@ -1,7 +1,7 @@
 //! The scene's geometry: primitives (a shape, a material, maybe a light) in BVH leaf
 //! order, and the queries the renderer asks of them.
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 use super::bvh::{Bvh, PACKET, PADDING};
 use super::hit::{NO_LIGHT, SurfaceHit};
@@ -265,25 +265,36 @@ impl Geometry {
         self.occluded(&Ray::new(o, w), distance * (1.0 - 1e-4))
     }
 
+    /// Texture coordinates of `hit`: a mesh's own where it has them, else the shape's.
+    pub fn texture_uv(&self, hit: &SurfaceHit) -> Vec2 {
+        let p = &self.prims[hit.prim as usize];
+        match &p.shape {
+            Shape::Triangle(tri) => {
+                let b = hit.shape_uv;
+                self.meshes[tri.mesh as usize].uv(tri.index, b.x, b.y)
+            }
+            shape => shape.texture_uv(hit.p, hit.shape_uv),
+        }
+    }
+
     fn surface_hit(&self, prim: u32, ray: &Ray, hit: &ShapeHit) -> Option<SurfaceHit> {
         let p = &self.prims[prim as usize];
         let point = ray.at(hit.t);
-        let geo = p.shape.geometry_at(point, hit);
-        let (mut ns, mut uv) = (geo.ng, geo.uv);
+        let ng = p.shape.normal_at(point);
+        let mut ns = ng;
         if let Shape::Triangle(tri) = &p.shape {
             let mesh = &self.meshes[tri.mesh as usize];
             if let Some(n) = mesh.shading_normal(tri.index, hit.uv.x, hit.uv.y) {
                 // Keep the shading normal on the geometric normal's side.
-                ns = if n.dot(geo.ng) < 0.0 { -n } else { n };
+                ns = if n.dot(ng) < 0.0 { -n } else { n };
             }
-            uv = mesh.uv(tri.index, hit.uv.x, hit.uv.y);
         }
         Some(SurfaceHit {
             p: point,
             t: hit.t,
-            ng: geo.ng,
+            ng,
             frame: Frame::from_normal(ns),
-            uv,
+            shape_uv: hit.uv,
             prim,
             material: p.material,
             light: p.light,

@@ -257,7 +257,7 @@ impl<'a> Shading<'a> {
         let (hit, w_out_local) = oriented(scene, hit, w_out)?;
         let base = &scene.materials[hit.material as usize];
         let material = match scene.texture(hit.material) {
-            Some(t) => Cow::Owned(t.apply(base, hit.uv)),
+            Some(t) => Cow::Owned(t.apply(base, scene.geometry.texture_uv(&hit))),
             None => Cow::Borrowed(base),
         };
         Some(Shading {

@@ -192,7 +192,7 @@ pub fn hit(light: &Light, at: &ShadingPoint, w: Vec3) -> Option<(Vec3, Vec3)> {
         Light::Area(a) => {
             let h = a.shape.intersect(&ray, f32::INFINITY)?;
             let y = ray.at(h.t);
-            Some((y, a.shape.geometry_at(y, &h).ng))
+            Some((y, a.shape.normal_at(y)))
         }
         Light::Polygon(l) => {
             let n = l.polygon.normal();

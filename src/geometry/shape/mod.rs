@@ -69,15 +69,6 @@ pub struct ShapeHit {
     pub uv: Vec2,
 }
 
-/// The local geometry at a surface point.
-#[derive(Clone, Copy, Debug)]
-pub struct SurfaceGeometry {
-    /// Geometric normal (unit; the side the shape calls "front").
-    pub ng: Vec3,
-    /// Texture coordinates.
-    pub uv: Vec2,
-}
-
 impl Shape {
     /// The shape's bounding box.
     pub fn bounds(&self) -> Aabb {
@@ -115,26 +106,27 @@ impl Shape {
         }
     }
 
-    /// Geometric normal and texture coordinates at a hit (`p` is the hit point).
+    /// Geometric normal (unit; the side the shape calls "front") at the point `p` on the
+    /// shape.
     #[inline]
-    pub fn geometry_at(&self, p: Vec3, hit: &ShapeHit) -> SurfaceGeometry {
+    pub fn normal_at(&self, p: Vec3) -> Vec3 {
         match self {
-            Shape::Triangle(t) => SurfaceGeometry {
-                ng: t.normal(),
-                uv: hit.uv,
-            },
-            Shape::Sphere(s) => SurfaceGeometry {
-                ng: s.normal_at(p),
-                uv: s.uv_at(p),
-            },
-            Shape::Rectangle(r) => SurfaceGeometry {
-                ng: r.normal,
-                uv: hit.uv,
-            },
-            Shape::Disk(d) => SurfaceGeometry {
-                ng: d.normal,
-                uv: d.uv_at(p),
-            },
+            Shape::Triangle(t) => t.normal(),
+            Shape::Sphere(s) => s.normal_at(p),
+            Shape::Rectangle(r) => r.normal,
+            Shape::Disk(d) => d.normal,
+        }
+    }
+
+    /// Texture coordinates at the point `p` on the shape whose hit had parameters
+    /// `shape_uv` ([`ShapeHit::uv`]); for a triangle of a mesh, the mesh's own texture
+    /// coordinates come first (see [`crate::geometry::Geometry::texture_uv`]).
+    #[inline]
+    pub fn texture_uv(&self, p: Vec3, shape_uv: Vec2) -> Vec2 {
+        match self {
+            Shape::Triangle(_) | Shape::Rectangle(_) => shape_uv,
+            Shape::Sphere(s) => s.uv_at(p),
+            Shape::Disk(d) => d.uv_at(p),
         }
     }
 }

@@ -324,7 +324,7 @@ mod tests {
                 .scene;
             let ray = crate::geometry::Ray::new(glam::Vec3::new(0.5, -0.25, 3.0), -glam::Vec3::Z);
             let hit = scene.geometry.intersect(&ray, f32::INFINITY).expect("hit");
-            (hit.uv, hit.ng)
+            (scene.geometry.texture_uv(&hit), hit.ng)
         };
         let at = |children: &str| hit("rectangle", children);
         let (uv, ng) = at("");
