@@ -110,24 +110,42 @@ impl Microfacet {
     /// D·cos-distributed one for Beckmann. Returns (m, density of m per steradian), the
     /// density from [`Microfacet::sample_pdf`].
     pub fn sample(&self, v: Vec3, u: Vec2) -> (Vec3, f32) {
-        let m = match self.distribution {
+        let m = self.sample_normal(v, u);
+        (m, self.sample_pdf(v, m))
+    }
+
+    /// The normal of [`Microfacet::sample`] without its density (a BSDF that reflects
+    /// about it asks for the density of the reflected direction instead).
+    #[inline]
+    pub fn sample_normal(&self, v: Vec3, u: Vec2) -> Vec3 {
+        match self.distribution {
             MicrofacetType::Ggx => self.sample_ggx_visible(v, u),
             MicrofacetType::Beckmann => self.sample_beckmann_cos(u),
-        };
-        (m, self.sample_pdf(v, m))
+        }
     }
 
     /// Density per steradian of [`Microfacet::sample`] drawing `m` given `v`:
     /// GGX D_v(m) = G1(v, m)·max(0, v·m)·D(m)/v_z; Beckmann D(m)·cos θ_m.
     pub fn sample_pdf(&self, v: Vec3, m: Vec3) -> f32 {
         match self.distribution {
+            MicrofacetType::Ggx => self.sample_pdf_from(v, m, self.d(m), self.g1(v, m)),
+            MicrofacetType::Beckmann => self.sample_pdf_from(v, m, self.d(m), 1.0),
+        }
+    }
+
+    /// [`Microfacet::sample_pdf`] given D(m) = `d` and G1(v, m) = `g1_v` (unused for
+    /// Beckmann) computed already: a BSDF's [`eval_pdf`](super::Bsdf::eval_pdf) shares
+    /// them with f, the same bits as computing them twice.
+    #[inline]
+    pub fn sample_pdf_from(&self, v: Vec3, m: Vec3, d: f32, g1_v: f32) -> f32 {
+        match self.distribution {
             MicrofacetType::Ggx => {
                 if v.z <= 0.0 {
                     return 0.0;
                 }
-                self.g1(v, m) * v.dot(m).max(0.0) * self.d(m) / v.z
+                g1_v * v.dot(m).max(0.0) * d / v.z
             }
-            MicrofacetType::Beckmann => self.d(m) * m.z.max(0.0),
+            MicrofacetType::Beckmann => d * m.z.max(0.0),
         }
     }
 

@@ -74,6 +74,13 @@ pub trait Bsdf {
         }
     }
 
+    /// `(eval(w_in, w_out), pdf(w_in, w_out))`, bit for bit; a BSDF whose two share terms
+    /// (a microfacet lobe's D and G1, a Phong lobe's cosⁿ) computes them once.
+    #[inline]
+    fn eval_pdf(&self, w_in: Vec3, w_out: Vec3) -> (Spectrum, f32) {
+        (self.eval(w_in, w_out), self.pdf(w_in, w_out))
+    }
+
     /// True when every lobe is a Dirac delta (light sampling cannot help).
     fn is_delta(&self) -> bool {
         false
@@ -91,10 +98,10 @@ pub trait Bsdf {
 /// where that density is zero or not finite.
 #[inline]
 pub(crate) fn sample_at(bsdf: &impl Bsdf, w_in: Vec3, w_out: Vec3) -> Option<BsdfSample> {
-    let pdf = bsdf.pdf(w_in, w_out);
-    (pdf > 0.0 && pdf.is_finite()).then(|| BsdfSample {
+    let (f, pdf) = bsdf.eval_pdf(w_in, w_out);
+    (pdf > 0.0 && pdf.is_finite()).then_some(BsdfSample {
         w_in,
-        f: bsdf.eval(w_in, w_out),
+        f,
         pdf,
         delta: false,
     })
@@ -153,6 +160,11 @@ impl Bsdf for Material {
         forward!(self, m => m.pdf(w_in, w_out))
     }
 
+    #[inline]
+    fn eval_pdf(&self, w_in: Vec3, w_out: Vec3) -> (Spectrum, f32) {
+        forward!(self, m => m.eval_pdf(w_in, w_out))
+    }
+
     fn is_delta(&self) -> bool {
         forward!(self, m => m.is_delta())
     }
@@ -172,6 +184,60 @@ mod tests {
         fn eval(&self, w_in: Vec3, w_out: Vec3) -> Spectrum {
             Spectrum::splat(((w_in.z > 0.0) && (w_out.z > 0.0)) as u8 as f32 * 0.25)
         }
+    }
+
+    /// `eval_pdf` is `(eval, pdf)` bit for bit for every material, at random directions
+    /// and at each material's own samples (where the shared terms are what MIS sees).
+    #[test]
+    fn eval_pdf_is_eval_and_pdf() {
+        use crate::sampling::warp::square_to_uniform_sphere;
+        use crate::sampling::{Rng32, Uniform};
+        let mut materials = vec![
+            Material::Diffuse(Diffuse {
+                reflectance: Spectrum::splat(0.5),
+            }),
+            Material::Conductor(Conductor::default()),
+            Material::Plastic(Plastic::new(PlasticParams::default()).expect("valid")),
+        ];
+        for exponent in [1.0, 30.0, 1000.0] {
+            materials.push(Material::Phong(Phong {
+                kd: Spectrum::splat(0.3),
+                ks: Spectrum::new(0.6, 0.5, 0.4),
+                exponent,
+            }));
+        }
+        for distribution in MicrofacetType::ALL {
+            for alpha in [0.01, 0.2, 0.8] {
+                let material = ConductorMaterial::Au;
+                let rough = RoughConductor::from_material(distribution, alpha, material);
+                materials.push(Material::RoughConductor(rough));
+                let params = PlasticParams {
+                    distribution,
+                    alpha,
+                    ..PlasticParams::default()
+                };
+                let plastic = RoughPlastic::new(params).expect("valid");
+                materials.push(Material::RoughPlastic(plastic));
+            }
+        }
+        let bits = |(f, pdf): (Spectrum, f32)| (f.to_array().map(f32::to_bits), pdf.to_bits());
+        let mut rng = Rng32::new(17);
+        let mut nonzero = 0;
+        for material in &materials {
+            for _ in 0..4000 {
+                let w_out = square_to_uniform_sphere(rng.next_2d()).0;
+                let w_out = Vec3::new(w_out.x, w_out.y, w_out.z.abs().max(1e-3)).normalize();
+                let sampled = material.sample(w_out, rng.next_2d()).map(|s| s.w_in);
+                let random = square_to_uniform_sphere(rng.next_2d()).0;
+                for w_in in [Some(random), sampled].into_iter().flatten() {
+                    let both = material.eval_pdf(w_in, w_out);
+                    let apart = (material.eval(w_in, w_out), material.pdf(w_in, w_out));
+                    assert_eq!(bits(both), bits(apart), "{material:?} at {w_in}, {w_out}");
+                    nonzero += (both.1 > 0.0) as u32;
+                }
+            }
+        }
+        assert!(nonzero > 40_000, "{nonzero}");
     }
 
     #[test]

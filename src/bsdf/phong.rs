@@ -83,6 +83,26 @@ impl Bsdf for Phong {
         let lobe_local = Frame::from_normal(reflect(w_out)).to_local(w_in);
         (1.0 - ps) * cosine_hemisphere_pdf(w_in) + ps * phong_lobe_pdf(lobe_local, self.exponent)
     }
+
+    /// f and the density with one cosⁿα: the lobe frame's z of w_in is w_in·mirror, the
+    /// cosine f uses (`Frame::from_normal` keeps the normal as given), so the bits are
+    /// `eval`'s and `pdf`'s.
+    #[inline]
+    fn eval_pdf(&self, w_in: Vec3, w_out: Vec3) -> (Spectrum, f32) {
+        if w_in.z <= 0.0 || w_out.z <= 0.0 {
+            return (Spectrum::ZERO, 0.0);
+        }
+        let cos_alpha = w_in.dot(reflect(w_out));
+        let power = cos_alpha.max(0.0).powf(self.exponent);
+        let f = self.kd * INV_PI + self.ks * ((self.exponent + 2.0) * INV_TWO_PI * power);
+        let lobe_pdf = if cos_alpha > 0.0 {
+            (self.exponent + 1.0) * INV_TWO_PI * power
+        } else {
+            0.0
+        };
+        let ps = self.specular_probability();
+        (f, (1.0 - ps) * cosine_hemisphere_pdf(w_in) + ps * lobe_pdf)
+    }
 }
 
 #[cfg(test)]

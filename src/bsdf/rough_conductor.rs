@@ -57,22 +57,42 @@ impl RoughConductor {
     }
 }
 
-impl Bsdf for RoughConductor {
-    fn eval(&self, w_in: Vec3, w_out: Vec3) -> Spectrum {
+impl RoughConductor {
+    /// f (when `F`) and the sampling density (when `P`) at (w_in, w_out), from one half
+    /// vector, one D(h) and one G1(w_out, h): `eval`, `pdf` and `eval_pdf` are this one
+    /// formula, so they agree bit for bit.
+    #[inline(always)]
+    fn terms<const F: bool, const P: bool>(&self, w_in: Vec3, w_out: Vec3) -> (Spectrum, f32) {
         if w_in.z <= 0.0 || w_out.z <= 0.0 {
-            return Spectrum::ZERO;
+            return (Spectrum::ZERO, 0.0);
         }
         let Some(h) = half_vector(w_in, w_out) else {
-            return Spectrum::ZERO;
+            return (Spectrum::ZERO, 0.0);
         };
         let mf = self.microfacet();
         let d = mf.d(h);
-        if d == 0.0 {
-            return Spectrum::ZERO;
-        }
-        let g = mf.g(w_in, w_out, h);
-        let fresnel = fresnel_conductor(w_out.dot(h), self.eta, self.k);
-        fresnel * self.specular_reflectance * (d * g / (4.0 * w_in.z * w_out.z))
+        let g1_out = mf.g1(w_out, h);
+        let f = if !F || d == 0.0 {
+            Spectrum::ZERO
+        } else {
+            let g = mf.g1(w_in, h) * g1_out;
+            let fresnel = fresnel_conductor(w_out.dot(h), self.eta, self.k);
+            fresnel * self.specular_reflectance * (d * g / (4.0 * w_in.z * w_out.z))
+        };
+        // p(h)/(4 w_out·h) per steradian, p the microfacet sampling density.
+        let cos_out = w_out.dot(h);
+        let pdf = if !P || cos_out <= 0.0 || w_in.dot(h) <= 0.0 {
+            0.0
+        } else {
+            mf.sample_pdf_from(w_out, h, d, g1_out) / (4.0 * cos_out)
+        };
+        (f, pdf)
+    }
+}
+
+impl Bsdf for RoughConductor {
+    fn eval(&self, w_in: Vec3, w_out: Vec3) -> Spectrum {
+        self.terms::<true, false>(w_in, w_out).0
     }
 
     /// Draws m (u as is), reflects w_out about it; `None` when m faces away from w_out or
@@ -81,7 +101,7 @@ impl Bsdf for RoughConductor {
         if w_out.z <= 0.0 {
             return None;
         }
-        let (m, _) = self.microfacet().sample(w_out, u);
+        let m = self.microfacet().sample_normal(w_out, u);
         if w_out.dot(m) <= 0.0 {
             return None;
         }
@@ -94,17 +114,11 @@ impl Bsdf for RoughConductor {
 
     /// p(h)/(4 w_out·h) per steradian, p the microfacet sampling density.
     fn pdf(&self, w_in: Vec3, w_out: Vec3) -> f32 {
-        if w_in.z <= 0.0 || w_out.z <= 0.0 {
-            return 0.0;
-        }
-        let Some(h) = half_vector(w_in, w_out) else {
-            return 0.0;
-        };
-        let cos_out = w_out.dot(h);
-        if cos_out <= 0.0 || w_in.dot(h) <= 0.0 {
-            return 0.0;
-        }
-        self.microfacet().sample_pdf(w_out, h) / (4.0 * cos_out)
+        self.terms::<false, true>(w_in, w_out).1
+    }
+
+    fn eval_pdf(&self, w_in: Vec3, w_out: Vec3) -> (Spectrum, f32) {
+        self.terms::<true, true>(w_in, w_out)
     }
 }
 

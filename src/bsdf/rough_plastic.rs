@@ -139,30 +139,56 @@ impl RoughPlastic {
     }
 }
 
-impl Bsdf for RoughPlastic {
-    fn eval(&self, w_in: Vec3, w_out: Vec3) -> Spectrum {
+impl RoughPlastic {
+    /// f (when `F`) and the sampling density (when `P`) at (w_in, w_out), from one half
+    /// vector, one D(h) and one G1(w_out, h): `eval`, `pdf` and `eval_pdf` are this one
+    /// formula, so they agree bit for bit.
+    #[inline(always)]
+    fn terms<const F: bool, const P: bool>(&self, w_in: Vec3, w_out: Vec3) -> (Spectrum, f32) {
         if w_in.z <= 0.0 || w_out.z <= 0.0 {
-            return Spectrum::ZERO;
+            return (Spectrum::ZERO, 0.0);
         }
-        let mut value = Spectrum::ZERO;
+        let (mut value, mut specular) = (Spectrum::ZERO, 0.0);
         if let Some(h) = half_vector(w_in, w_out) {
             let mf = self.microfacet();
             let d = mf.d(h);
-            if d > 0.0 {
+            let g1_out = mf.g1(w_out, h);
+            if F && d > 0.0 {
                 let fresnel = fresnel_dielectric(w_out.dot(h), self.eta);
-                let g = mf.g(w_in, w_out, h);
+                let g = mf.g1(w_in, h) * g1_out;
                 value =
                     self.params.specular_reflectance * (fresnel * d * g / (4.0 * w_in.z * w_out.z));
             }
+            if P && w_out.dot(h) > 0.0 && w_in.dot(h) > 0.0 {
+                specular = mf.sample_pdf_from(w_out, h, d, g1_out) / (4.0 * w_out.dot(h));
+            }
         }
-        let (t_in, t_out) = (
-            self.tables.transmittance(w_in.z),
-            self.tables.transmittance(w_out.z),
-        );
-        let diffuse = self
-            .params
-            .normalised_diffuse(self.tables.internal_reflectance);
-        value + diffuse * (INV_PI * t_in * t_out / (self.eta * self.eta))
+        let f = if F {
+            let (t_in, t_out) = (
+                self.tables.transmittance(w_in.z),
+                self.tables.transmittance(w_out.z),
+            );
+            let diffuse = self
+                .params
+                .normalised_diffuse(self.tables.internal_reflectance);
+            value + diffuse * (INV_PI * t_in * t_out / (self.eta * self.eta))
+        } else {
+            Spectrum::ZERO
+        };
+        // p_s·p(h)/(4 w_out·h) + (1 − p_s)·cos θ_in/π per steradian.
+        let pdf = if P {
+            let ps = self.specular_probability(w_out);
+            ps * specular + (1.0 - ps) * cosine_hemisphere_pdf(w_in)
+        } else {
+            0.0
+        };
+        (f, pdf)
+    }
+}
+
+impl Bsdf for RoughPlastic {
+    fn eval(&self, w_in: Vec3, w_out: Vec3) -> Spectrum {
+        self.terms::<true, false>(w_in, w_out).0
     }
 
     /// u.x picks the lobe and is rescaled to [0, 1) for reuse by that lobe's warp.
@@ -172,7 +198,9 @@ impl Bsdf for RoughPlastic {
         }
         let ps = self.specular_probability(w_out);
         let w_in = if u.x < ps {
-            let (m, _) = self.microfacet().sample(w_out, Vec2::new(u.x / ps, u.y));
+            let m = self
+                .microfacet()
+                .sample_normal(w_out, Vec2::new(u.x / ps, u.y));
             reflect(w_out, m)
         } else {
             let u = Vec2::new(reuse_above(u.x, ps), u.y);
@@ -183,17 +211,11 @@ impl Bsdf for RoughPlastic {
 
     /// p_s·p(h)/(4 w_out·h) + (1 − p_s)·cos θ_in/π per steradian.
     fn pdf(&self, w_in: Vec3, w_out: Vec3) -> f32 {
-        if w_in.z <= 0.0 || w_out.z <= 0.0 {
-            return 0.0;
-        }
-        let ps = self.specular_probability(w_out);
-        let specular = match half_vector(w_in, w_out) {
-            Some(h) if w_out.dot(h) > 0.0 && w_in.dot(h) > 0.0 => {
-                self.microfacet().sample_pdf(w_out, h) / (4.0 * w_out.dot(h))
-            }
-            _ => 0.0,
-        };
-        ps * specular + (1.0 - ps) * cosine_hemisphere_pdf(w_in)
+        self.terms::<false, true>(w_in, w_out).1
+    }
+
+    fn eval_pdf(&self, w_in: Vec3, w_out: Vec3) -> (Spectrum, f32) {
+        self.terms::<true, true>(w_in, w_out)
     }
 }
 

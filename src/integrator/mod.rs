@@ -376,3 +376,11 @@ pub fn emitted_at(scene: &Scene, hit: &SurfaceHit, w: Vec3) -> Spectrum {
 fn f_cos(material: &impl Bsdf, w_in_local: Vec3, w_out_local: Vec3) -> Spectrum {
     material.eval(w_in_local, w_out_local) * w_in_local.z.abs()
 }
+
+/// [`f_cos`] and the BSDF's density of `w_in_local`, computed together
+/// ([`Bsdf::eval_pdf`]).
+#[inline]
+fn f_cos_pdf(material: &impl Bsdf, w_in_local: Vec3, w_out_local: Vec3) -> (Spectrum, f32) {
+    let (f, pdf) = material.eval_pdf(w_in_local, w_out_local);
+    (f * w_in_local.z.abs(), pdf)
+}

@@ -22,7 +22,7 @@ pub use weights::{MisHeuristic, mis_weight};
 
 use super::light::light_record;
 use super::probe::{ProbeSample, no_direction};
-use super::{Context, emitted_at, f_cos};
+use super::{Context, emitted_at, f_cos_pdf};
 use glam::Vec2;
 
 use crate::bsdf::Bsdf;
@@ -227,7 +227,8 @@ fn score_light_sample(
         return Spectrum::ZERO;
     };
     let w_in = ctx.hit.frame.to_local(ls.w_in);
-    let f = f_cos(ctx.material, w_in, ctx.w_out);
+    // f and the BSDF's density of w_in together: they share terms (see Bsdf::eval_pdf).
+    let (f, p_bsdf) = f_cos_pdf(ctx.material, w_in, ctx.w_out);
     let p_light = sel.pmf * ls.pdf;
     let occluded = f != Spectrum::ZERO && ctx.occluded(&ls);
     if f == Spectrum::ZERO || occluded {
@@ -247,7 +248,6 @@ fn score_light_sample(
     let factor = if ls.delta {
         delta_scale / (ls.pdf * sel.pmf)
     } else {
-        let p_bsdf = ctx.material.pdf(w_in, ctx.w_out);
         scale(p_light, p_bsdf)
     };
     let value = f * ls.radiance * factor;

@@ -6,7 +6,7 @@ use super::optimal::{BSDF, LIGHT};
 use super::{MisSettings, TechniqueMoments, draw_light, emitter_along};
 use crate::bsdf::Bsdf;
 use crate::geometry::{Ray, offset_origin};
-use crate::integrator::{Context, f_cos};
+use crate::integrator::{Context, f_cos_pdf};
 use crate::light::select::LightSelector;
 use crate::math::Spectrum;
 use crate::sampling::Uniform;
@@ -81,7 +81,7 @@ fn optimal_light_sample(
         return run.fail(LIGHT);
     };
     let w_in = ctx.hit.frame.to_local(ls.w_in);
-    let f = f_cos(ctx.material, w_in, ctx.w_out);
+    let (f, p_bsdf) = f_cos_pdf(ctx.material, w_in, ctx.w_out);
     if ls.delta {
         // A Dirac sample: weight 1, outside the control variate's domain.
         let value = if f != Spectrum::ZERO && !ctx.occluded(&ls) {
@@ -91,7 +91,6 @@ fn optimal_light_sample(
         };
         return value + run.fail(LIGHT);
     }
-    let p_bsdf = ctx.material.pdf(w_in, ctx.w_out);
     // Only BSDF sampling could also reach this point, and only if it is visible.
     if ls.radiance == Spectrum::ZERO || (f == Spectrum::ZERO && p_bsdf <= 0.0) || ctx.occluded(&ls)
     {
