@@ -1,5 +1,5 @@
 //! The cost of one solid-angle sample of a rectangle light, one shading point at a time
-//! (`FastSphericalRectangle`) and four at a time (`sample_lanes`, AVX2 where the
+//! (`FastSphericalRectangle`) and `LANES` at a time (`sample_lanes`, AVX2 where the
 //! processor has it), at points below a ceiling light as in a Cornell box: ns per sample,
 //! best of seven passes over 10⁶ points. Both give the same bits (checked here too).
 //!
