@@ -68,7 +68,7 @@ fn main() {
         }
         acc
     });
-    let four_at_a_time = best(&|| {
+    let lanes_at_a_time = best(&|| {
         let mut acc = Vec3::ZERO;
         for c in points.chunks_exact(LANES) {
             for (offset, pdf) in sample_lanes(black_box(&lanes_of(c))).into_iter().flatten() {
@@ -78,8 +78,8 @@ fn main() {
         acc
     });
     println!(
-        "one at a time {one_at_a_time:.1} ns/sample, {LANES} at a time {four_at_a_time:.1} \
+        "one at a time {one_at_a_time:.1} ns/sample, {LANES} at a time {lanes_at_a_time:.1} \
          ns/sample ({:.2}x)",
-        one_at_a_time / four_at_a_time
+        one_at_a_time / lanes_at_a_time
     );
 }

@@ -229,7 +229,8 @@ mod tests {
                 let w_out = Vec3::new(w_out.x, w_out.y, w_out.z.abs().max(1e-3)).normalize();
                 let sampled = material.sample(w_out, rng.next_2d()).map(|s| s.w_in);
                 let random = square_to_uniform_sphere(rng.next_2d()).0;
-                for w_in in [Some(random), sampled].into_iter().flatten() {
+                let nan = Vec3::new(f32::NAN, 0.0, 1.0);
+                for w_in in [Some(random), sampled, Some(nan)].into_iter().flatten() {
                     let both = material.eval_pdf(w_in, w_out);
                     let apart = (material.eval(w_in, w_out), material.pdf(w_in, w_out));
                     assert_eq!(bits(both), bits(apart), "{material:?} at {w_in}, {w_out}");

@@ -95,10 +95,12 @@ impl Bsdf for Phong {
         let cos_alpha = w_in.dot(reflect(w_out));
         let power = cos_alpha.max(0.0).powf(self.exponent);
         let f = self.kd * INV_PI + self.ks * ((self.exponent + 2.0) * INV_TWO_PI * power);
-        let lobe_pdf = if cos_alpha > 0.0 {
-            (self.exponent + 1.0) * INV_TWO_PI * power
-        } else {
+        // As `phong_lobe_pdf`: zero at or below the lobe's horizon, NaN for a NaN cosine.
+        let lobe_pdf = if cos_alpha <= 0.0 {
             0.0
+        } else {
+            let power = if cos_alpha.is_nan() { cos_alpha } else { power };
+            (self.exponent + 1.0) * INV_TWO_PI * power
         };
         let ps = self.specular_probability();
         (f, (1.0 - ps) * cosine_hemisphere_pdf(w_in) + ps * lobe_pdf)

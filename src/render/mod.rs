@@ -121,7 +121,7 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
     } else {
         Vec::new()
     };
-    // Light samples drawn four shading points at a time where the lights allow it.
+    // Light samples drawn `LANES` shading points at a time where the lights allow it.
     let lanes = staged::light_lanes(scene, &estimator);
     for window in rounds.windows(2) {
         let (s0, s1) = (window[0], window[1]);

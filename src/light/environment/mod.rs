@@ -41,7 +41,7 @@ enum Radiance {
     Constant(Spectrum),
     Map {
         image: LatLongImage,
-        /// Boxed: the `Constant` variant is a few bytes.
+        /// Boxed, so that the enum stays small (the `Constant` variant is a few bytes).
         distribution: Box<PiecewiseConstant2D>,
         /// The MIS-compensated distribution (Karlík et al. 2019), if any cell keeps
         /// weight after the average is subtracted.

@@ -22,7 +22,7 @@ pub struct PiecewiseConstant1D {
     integral: f32,
     /// The guide table: for k = 0..=G (G a power of two), the number of entries of
     /// cdf[1..] that are ≤ k/G. A u in [k/G, (k+1)/G) has its bin between guide[k] and
-    /// guide[k + 1]; G ≥ n, so that stretch holds one CDF entry on average.
+    /// guide[k + 1]; G ≥ n (up to n = 2²⁴), so that stretch holds one CDF entry on average.
     guide: Vec<u32>,
 }
 
