@@ -9,18 +9,22 @@
 //! `--dump DIR` also writes each mesh and the rays as raw little-endian files for
 //! `benches/embree_compare.py`.
 //!
-//! Measured on the 2-core development machine (x86-64, AVX-512 present but the build
-//! targets baseline SSE2; Embree 4.4 via `embreex` picks its widest ISA at run time),
-//! Mrays/s, median of 5, 2¹⁰ × 2¹⁰ rays of each kind:
+//! Measured on the 2-core development machine on 2026-11-26 (AMD EPYC, AVX-512 present
+//! but the build targets baseline x86-64, with AVX2 kernels chosen at run time where they
+//! exist; Embree 4.4 via
+//! `embreex` picks its widest ISA), Mrays/s, median of 5, 2²⁰ rays of each kind; see
+//! BENCHMARKS.md, session 16, for Embree 3's single rays and packets on the same rays:
 //!
 //! | mesh | BVH | build s | closest 1 thr | closest 2 thr | any-hit 1 thr | any-hit 2 thr |
 //! |---|---|---|---|---|---|---|
-//! | 100k | lightlab BVH4 | 0.043 | 8.89 | 17.70 | 3.54 | 7.00 |
-//! | 100k | obvhs CWBVH (medium_build) | 0.058 | 4.13 | 8.12 | 2.26 | 4.33 |
-//! | 100k | Embree 4 (embreex) | 0.066 | 9.66 | 17.67 | 3.39 | 6.48 |
-//! | 1M | lightlab BVH4 | 0.522 | 6.23 | 12.28 | 2.82 | 5.54 |
-//! | 1M | obvhs CWBVH (medium_build) | 0.696 | 3.60 | 7.06 | 1.80 | 3.69 |
-//! | 1M | Embree 4 (embreex) | 1.129 | 7.86 | 15.47 | 1.75 | 2.36 |
+//! | 100k | lightlab BVH4 | 0.021 | 13.56 | 28.70 | 5.67 | 11.16 |
+//! | 100k | lightlab BVH4, packets of 8 (coherent) | | 18.29 | 36.57 | | |
+//! | 100k | obvhs CWBVH (medium_build) | 0.036 | 5.42 | 11.02 | 3.14 | 6.05 |
+//! | 100k | Embree 4 (embreex) | 0.052 | 11.75 | 23.05 | 4.83 | 9.18 |
+//! | 1M | lightlab BVH4 | 0.282 | 9.16 | 19.20 | 4.30 | 8.09 |
+//! | 1M | lightlab BVH4, packets of 8 (coherent) | | 11.03 | 21.96 | | |
+//! | 1M | obvhs CWBVH (medium_build) | 0.557 | 4.81 | 9.84 | 2.38 | 4.75 |
+//! | 1M | Embree 4 (embreex) | 0.663 | 9.14 | 18.29 | 2.82 | 5.10 |
 //!
 //! The machine is shared, so 2-thread figures in particular vary by ±20 % between runs.
 
