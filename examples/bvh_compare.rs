@@ -10,10 +10,10 @@
 //! `benches/embree_compare.py`.
 //!
 //! Measured on the 2-core development machine on 2026-11-26 (AMD EPYC, AVX-512 present
-//! but the build targets baseline x86-64, with AVX2 kernels chosen at run time where they
-//! exist; Embree 4.4 via
-//! `embreex` picks its widest ISA), Mrays/s, median of 5, 2²⁰ rays of each kind; see
-//! BENCHMARKS.md, session 16, for Embree 3's single rays and packets on the same rays:
+//! but the build targets baseline x86-64, with AVX2 kernels chosen at run time where
+//! they exist; Embree 4.4 via `embreex` picks its widest ISA), Mrays/s, median of 5, 2²⁰
+//! rays of each kind; see BENCHMARKS.md, session 16, for Embree 3's single rays and
+//! packets on the same rays:
 //!
 //! | mesh | BVH | build s | closest 1 thr | closest 2 thr | any-hit 1 thr | any-hit 2 thr |
 //! |---|---|---|---|---|---|---|

@@ -9,7 +9,7 @@
 //! side, in two AVX2 registers of four f64 lanes each, keep the core busy: 3.2–3.4× the
 //! throughput of one chain (four lanes gave 2.5–2.6×), measured on the renderer's
 //! placement of a ceiling light (`examples/rectangle_lanes.rs`). An AVX-512 build of the
-//! same kernel (one register per step) was 5–10 % faster in that example and no faster
+//! same kernel (one register per step) was 4–10 % faster in that example and no faster
 //! in a render, so it is not dispatched. Branches of the scalar
 //! version become per-lane selects: both sides are computed, each lane keeps the one the
 //! scalar code takes.
