@@ -6,6 +6,7 @@
  *   apt-get install libembree-dev          # Debian ships Embree 3.13
  *   cc -O2 -o target/embree_packets benches/embree_packets.c -lembree3 -lpthread
  *   target/embree_packets DIR
+ *   target/embree_packets DIR --builds N [THREADS]   # build times only (see below)
  *
  * The primary rays are in scanline order over a square grid of pixels, so eight
  * consecutive rays (eight neighbouring pixels of a row) make a coherent packet, flagged
@@ -13,6 +14,10 @@
  * lightlab's (0, t_max), so a hit count may differ by a ray at distance 0. Rates are medians of 5 runs, on 1 and 2 threads
  * (each thread takes an equal share of the rays); hit counts are printed to compare with
  * bvh_compare's.
+ *
+ * With --builds N the program only builds: each mesh N times on a device of THREADS
+ * threads (default: all), printing the median of rtcCommitScene's wall time with the
+ * scene's creation, to set against examples/bvh_build.rs's medians.
  */
 #include <embree3/rtcore.h>
 #include <math.h>
@@ -134,9 +139,50 @@ static double rate(RTCScene scene, const float *rays, size_t n, int threads, int
     return n / seconds[RUNS / 2] / 1e6;
 }
 
+/* Median wall time of `runs` builds of each mesh (the --builds mode). */
+static int builds(const char *dir, int runs, int threads) {
+    char config[64] = "";
+    if (threads > 0) snprintf(config, sizeof config, "threads=%d", threads);
+    RTCDevice device = rtcNewDevice(config);
+    printf("| mesh | Embree %d.%d.%d build s, %s threads, median of %d |\n", RTC_VERSION_MAJOR,
+           RTC_VERSION_MINOR, RTC_VERSION_PATCH, threads > 0 ? config + 8 : "all", runs);
+    printf("|---|---|\n");
+    const char *names[] = {"100k", "1M"};
+    double *times = calloc((size_t)runs, sizeof(double));
+    for (int m = 0; m < 2; m++) {
+        size_t vbytes, ibytes;
+        float *vertices = read_file(dir, names[m], "vertices.f32", &vbytes);
+        unsigned *indices = read_file(dir, names[m], "indices.u32", &ibytes);
+        for (int r = 0; r < runs; r++) {
+            double start = now();
+            RTCScene scene = rtcNewScene(device);
+            RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+            rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                       vertices, 0, 12, vbytes / 12);
+            rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices,
+                                       0, 12, ibytes / 12);
+            rtcCommitGeometry(geom);
+            rtcAttachGeometry(scene, geom);
+            rtcReleaseGeometry(geom);
+            rtcCommitScene(scene);
+            times[r] = now() - start;
+            rtcReleaseScene(scene);
+        }
+        qsort(times, (size_t)runs, sizeof(double), cmp_double);
+        printf("| %s | %.3f |\n", names[m], times[runs / 2]);
+        free(vertices), free(indices);
+    }
+    free(times);
+    rtcReleaseDevice(device);
+    return 0;
+}
+
 int main(int argc, char **argv) {
+    if ((argc == 4 || argc == 5) && strcmp(argv[2], "--builds") == 0) {
+        return builds(argv[1], atoi(argv[3]), argc == 5 ? atoi(argv[4]) : 0);
+    }
     if (argc != 2) {
-        fprintf(stderr, "usage: embree_packets DIR (from bvh_compare --dump DIR)\n");
+        fprintf(stderr, "usage: embree_packets DIR [--builds N [THREADS]] (DIR from bvh_compare --dump DIR)\n");
         return 2;
     }
     RTCDevice device = rtcNewDevice(NULL);

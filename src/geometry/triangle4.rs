@@ -9,9 +9,10 @@
 //! tie, as the scalar test run over the lanes in turn would decide.
 
 use glam::{BVec4A, Vec3, Vec4};
+use rayon::prelude::*;
 
 use super::Ray;
-use super::bvh::PADDING;
+use super::bvh::{PADDING, huge_pages};
 use super::triangle::TriangleHit;
 
 /// Lanes per block.
@@ -71,24 +72,24 @@ impl Triangle4 {
     /// One block per [`LANES`] slots of a BVH's block-laid primitive order (see
     /// `Bvh::build_blocks`): `lane(position, index)` gives the (id, [p0, e1, e2]) of the
     /// primitive `index` at leaf-order `position`, or `None` for a slot that holds no
-    /// triangle. Padding slots (`bvh::PADDING`) stay unused lanes.
+    /// triangle. Padding slots (`bvh::PADDING`) stay unused lanes. Blocks are built in
+    /// parallel.
     pub fn blocks(
         order: &[u32],
-        mut lane: impl FnMut(usize, u32) -> Option<(u32, [Vec3; 3])>,
+        lane: impl Fn(usize, u32) -> Option<(u32, [Vec3; 3])> + Sync,
     ) -> Vec<Triangle4> {
-        order
-            .chunks(LANES)
-            .enumerate()
-            .map(|(k, slots)| {
-                let mut lanes = [(NO_TRIANGLE, [Vec3::ZERO; 3]); LANES];
-                for (l, &index) in slots.iter().enumerate() {
-                    if index != PADDING {
-                        lanes[l] = lane(k * LANES + l, index).unwrap_or(lanes[l]);
-                    }
+        // Blocks are independent: built in parallel (a 1M-triangle mesh has 250k+).
+        let mut blocks = huge_pages::with_capacity(order.len().div_ceil(LANES));
+        blocks.par_extend(order.par_chunks(LANES).enumerate().map(|(k, slots)| {
+            let mut lanes = [(NO_TRIANGLE, [Vec3::ZERO; 3]); LANES];
+            for (l, &index) in slots.iter().enumerate() {
+                if index != PADDING {
+                    lanes[l] = lane(k * LANES + l, index).unwrap_or(lanes[l]);
                 }
-                Triangle4::new(&lanes)
-            })
-            .collect()
+            }
+            Triangle4::new(&lanes)
+        }));
+        blocks
     }
 
     /// The lanes hit in (0, t_max), as a mask, with their distances and barycentrics.

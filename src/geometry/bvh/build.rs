@@ -9,9 +9,11 @@
 //! copied afterwards. Slots a subtree does not need stay unused; only the wide collapse
 //! reads this tree, by following child links.
 
+use super::huge_pages;
 use super::node::MAX_LEAF_SIZE;
 use super::prim_ref::{Binning, BuildBox, PrimRef, bounds_of};
 use crate::geometry::Aabb;
+use rayon::prelude::*;
 
 /// Centroid bins per axis.
 pub(super) const BIN_COUNT: usize = 16;
@@ -48,18 +50,28 @@ impl LeafKind {
     }
 }
 
-/// A node of the binary tree. A leaf has `count > 0` primitives at `first ..` in the
-/// primitive order; an inner node has `count == 0` and children `left`, `right`.
+/// A node of the binary tree, 32 bytes aligned to 32 so a node never straddles two
+/// cache lines (the collapse reads them scattered). A leaf has `count > 0` primitives at
+/// `first_or_right ..` in the primitive order; an inner node at slot i has `count == 0`,
+/// its left child at slot i + 1 (see [`BinaryNode::children`]) and its right child at
+/// `first_or_right`.
 #[derive(Clone, Copy, Debug)]
+#[repr(C, align(32))]
 pub struct BinaryNode {
     /// Box of everything below.
     pub bounds: Aabb,
-    /// First primitive (leaf) or left child (inner node).
-    pub first_or_left: u32,
-    /// Right child (inner node only).
-    pub right: u32,
+    /// First primitive (leaf) or right child (inner node).
+    pub first_or_right: u32,
     /// Primitive count; 0 for an inner node.
     pub count: u32,
+}
+
+impl BinaryNode {
+    /// The (left, right) children of the inner node at slot `index`.
+    #[inline]
+    pub fn children(&self, index: u32) -> (u32, u32) {
+        (index + 1, self.first_or_right)
+    }
 }
 
 /// A binary BVH: nodes (root at 0) and primitive indices in leaf order.
@@ -85,28 +97,29 @@ pub fn build_binary(bounds: &[Aabb], kind: LeafKind) -> BinaryBvh {
     } else {
         bounds
     };
-    let mut refs: Vec<PrimRef> = bounds
-        .iter()
-        .enumerate()
-        .map(|(id, b)| PrimRef {
-            bounds: BuildBox::from(b),
-            id: id as u32,
-        })
-        .collect();
+    // The set-up passes touch every primitive (and 2n − 1 node slots): in parallel.
+    let mut refs: Vec<PrimRef> = huge_pages::with_capacity(bounds.len());
+    refs.par_extend(
+        bounds
+            .par_iter()
+            .enumerate()
+            .map(|(id, b)| PrimRef::new(BuildBox::from(b), id as u32)),
+    );
     let unused = BinaryNode {
         bounds: Aabb::EMPTY,
-        first_or_left: 0,
-        right: 0,
+        first_or_right: 0,
         count: 0,
     };
-    let mut nodes = vec![unused; 2 * bounds.len() - 1];
+    let mut nodes = huge_pages::with_capacity(2 * bounds.len() - 1);
+    nodes.par_extend(rayon::iter::repeat_n(unused, 2 * bounds.len() - 1));
     let input = Input { kind };
-    let boxes = bounds_of(&refs);
+    let boxes = refs
+        .par_chunks(PARALLEL_THRESHOLD)
+        .map(bounds_of)
+        .reduce(|| EMPTY_BOXES, |a, b| (a.0.union(b.0), a.1.union(b.1)));
     build_subtree(&input, &mut nodes, 0, &mut refs, boxes, 0, 0);
-    BinaryBvh {
-        nodes,
-        order: refs.iter().map(|r| r.id).collect(),
-    }
+    let order: Vec<u32> = refs.par_iter().map(|r| r.id()).collect();
+    BinaryBvh { nodes, order }
 }
 
 /// Read-only build input shared by all threads.
@@ -143,8 +156,7 @@ fn build_subtree(
     if left_count == 0 {
         nodes[0] = BinaryNode {
             bounds,
-            first_or_left: first,
-            right: 0,
+            first_or_right: first,
             count: prims.len() as u32,
         };
         return;
@@ -155,8 +167,7 @@ fn build_subtree(
     let right = left + left_slots as u32;
     nodes[0] = BinaryNode {
         bounds,
-        first_or_left: left,
-        right,
+        first_or_right: right,
         count: 0,
     };
     let (left_nodes, right_nodes) = nodes[1..].split_at_mut(left_slots);
@@ -221,15 +232,27 @@ fn sah_split(
     if n == 1 {
         return Some(Split::Leaf);
     }
+    // A block leaf holds up to MAX_LEAF_SIZE for the cost of one traversal step, which no
+    // split beats: C(leaf) = 1 ≤ C_trav + (A_L·C_L + A_R·C_R)/A. Only an infinite parent
+    // area (∞/∞) would make the comparison below fail, so the binning is skipped for
+    // all other such nodes: about half the nodes of a block tree.
+    if input.kind == LeafKind::Blocks
+        && n <= MAX_LEAF_SIZE
+        && BLOCK_COST <= TRAVERSAL_COST
+        && bounds.surface_area() != f32::INFINITY
+    {
+        return Some(Split::Leaf);
+    }
     let extent = centroid_bounds.extent();
     let binning = Binning::new(centroid_bounds);
     let mut bins = [[(BuildBox::EMPTY, 0u32); BIN_COUNT]; 3];
     for p in prims {
-        let at = binning.bins(p.bounds.centroid());
+        let bounds = p.bounds();
+        let at = binning.bins(bounds.centroid());
         for (axis, axis_bins) in bins.iter_mut().enumerate() {
             if extent[axis] > 0.0 {
                 let bin = &mut axis_bins[at[axis]];
-                *bin = (bin.0.union(p.bounds), bin.1 + 1);
+                *bin = (bin.0.union(bounds), bin.1 + 1);
             }
         }
     }
@@ -296,7 +319,7 @@ fn partition(
     let mut left = 0;
     for i in 0..prims.len() {
         let p = prims[i];
-        let c = p.bounds.centroid();
+        let c = p.bounds().centroid();
         let side = if binning.bins(c)[axis] < bin {
             prims.swap(i, left);
             left += 1;
@@ -304,7 +327,7 @@ fn partition(
         } else {
             &mut above
         };
-        *side = [side[0].union(p.bounds), side[1].grow(c)];
+        *side = [side[0].union(p.bounds()), side[1].grow(c)];
     }
     let boxes = |[b, c]: [BuildBox; 2]| (b.aabb(), c.aabb());
     (left, boxes(below), boxes(above))
@@ -322,7 +345,7 @@ fn median_split(prims: &mut [PrimRef], centroid_bounds: &Aabb) -> usize {
     };
     let mid = prims.len() / 2;
     prims.select_nth_unstable_by(mid, |a, b| {
-        a.bounds.centroid()[axis].total_cmp(&b.bounds.centroid()[axis])
+        a.bounds().centroid()[axis].total_cmp(&b.bounds().centroid()[axis])
     });
     mid
 }
@@ -340,14 +363,15 @@ mod tests {
             let node = tree.nodes[i as usize];
             if node.count > 0 {
                 assert!(node.count as usize <= MAX_LEAF_SIZE.max(1));
-                for k in node.first_or_left..node.first_or_left + node.count {
+                for k in node.first_or_right..node.first_or_right + node.count {
                     let p = tree.order[k as usize] as usize;
                     assert!(!seen[p]);
                     seen[p] = true;
                     assert_eq!(node.bounds.union(bounds[p]), node.bounds);
                 }
             } else {
-                for child in [node.first_or_left, node.right] {
+                let (left, right) = node.children(i);
+                for child in [left, right] {
                     assert_eq!(
                         node.bounds.union(tree.nodes[child as usize].bounds),
                         node.bounds

@@ -17,6 +17,7 @@
 
 mod build;
 mod collapse;
+pub(crate) mod huge_pages;
 pub mod node;
 mod packet;
 mod prim_ref;

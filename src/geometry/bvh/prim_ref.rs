@@ -1,7 +1,7 @@
 //! What the binned SAH build moves and bins: primitive records (box and index), boxes
 //! with their three coordinates in one SSE register, and the centroid-to-bin map.
 
-use glam::Vec3A;
+use glam::{Vec3A, Vec4};
 
 use super::build::BIN_COUNT;
 use crate::geometry::Aabb;
@@ -60,14 +60,41 @@ impl BuildBox {
     }
 }
 
-/// A primitive as the build moves it: its box and index. The build partitions these
-/// records themselves, not indices into the boxes, so every pass over a node's
-/// primitives reads consecutive memory (as Embree's builders partition their PrimRefs).
+/// A primitive as the build moves it: its box and index, in 32 bytes (the index rides in
+/// the fourth lane of the lower corner). The build partitions these records themselves,
+/// not indices into the boxes, so every pass over a node's primitives reads consecutive
+/// memory (as Embree's builders partition their 32-byte PrimRefs).
 #[derive(Clone, Copy, Debug)]
 pub(super) struct PrimRef {
-    pub bounds: BuildBox,
+    /// Lower corner in x, y, z; the index's bits in w.
+    lower: Vec4,
+    upper: Vec3A,
+}
+
+impl PrimRef {
+    pub fn new(bounds: BuildBox, id: u32) -> PrimRef {
+        PrimRef {
+            lower: bounds.min.extend(f32::from_bits(id)),
+            upper: bounds.max,
+        }
+    }
+
+    /// The box. (`Vec3A::from_vec4` is free where glam keeps vectors in SSE or NEON
+    /// registers; the fourth lane then keeps the index bits, which no operation on a
+    /// `Vec3A` reads.)
+    #[inline(always)]
+    pub fn bounds(&self) -> BuildBox {
+        BuildBox {
+            min: Vec3A::from_vec4(self.lower),
+            max: self.upper,
+        }
+    }
+
     /// Index into the boxes given to [`super::build::build_binary`].
-    pub id: u32,
+    #[inline(always)]
+    pub fn id(&self) -> u32 {
+        self.lower.w.to_bits()
+    }
 }
 
 /// The box of the primitives and the box of their centroids.
@@ -75,7 +102,7 @@ pub(super) fn bounds_of(prims: &[PrimRef]) -> (Aabb, Aabb) {
     let (b, c) = prims
         .iter()
         .fold((BuildBox::EMPTY, BuildBox::EMPTY), |(b, c), p| {
-            (b.union(p.bounds), c.grow(p.bounds.centroid()))
+            (b.union(p.bounds()), c.grow(p.bounds().centroid()))
         });
     (b.aabb(), c.aabb())
 }
@@ -133,6 +160,34 @@ impl Binning {
 mod tests {
     use super::*;
     use glam::Vec3;
+
+    #[test]
+    fn records_keep_their_box_and_index() {
+        let b = BuildBox {
+            min: Vec3A::new(-1.5, 0.0, f32::MIN_POSITIVE),
+            max: Vec3A::new(2.0, f32::INFINITY, 3.25),
+        };
+        // Indices whose bits are denormals, normals, infinities and NaNs as floats.
+        for id in [
+            0,
+            1,
+            0x7f_ffff,
+            0x80_0000,
+            (1 << 29) - 1,
+            0x7f80_0000,
+            0x7fc0_0001,
+            u32::MAX,
+        ] {
+            let r = PrimRef::new(b, id);
+            let moved = [r][0];
+            assert_eq!(moved.id(), id);
+            let got = moved.bounds();
+            assert_eq!(
+                (got.min.to_array(), got.max.to_array()),
+                (b.min.to_array(), b.max.to_array())
+            );
+        }
+    }
 
     #[test]
     fn bins_are_saturating_casts_clamped_for_every_input() {

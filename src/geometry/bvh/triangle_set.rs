@@ -3,8 +3,9 @@
 //! one read of consecutive memory and one SIMD Möller–Trumbore test.
 
 use glam::Vec3;
+use rayon::prelude::*;
 
-use super::{BLOCK, Bvh, PACKET};
+use super::{BLOCK, Bvh, PACKET, huge_pages};
 use crate::geometry::triangle::TriangleHit;
 use crate::geometry::triangle4::Triangle4;
 use crate::geometry::{Aabb, Ray};
@@ -27,18 +28,21 @@ impl TriangleSet {
     /// # Panics
     /// With more than 2²⁷ triangles (the leaf blocks' limit, see [`Bvh::build_blocks`]).
     pub fn new(positions: &[Vec3], indices: &[[u32; 3]]) -> TriangleSet {
-        let vertex = |i: u32| positions.get(i as usize).copied();
-        let corners: Vec<Option<[Vec3; 3]>> = indices
-            .iter()
-            .map(|t| Some([vertex(t[0])?, vertex(t[1])?, vertex(t[2])?]))
-            .collect();
-        let bounds: Vec<Aabb> = corners
-            .iter()
-            .map(|c| c.map_or(Aabb::EMPTY, |c| Aabb::from_points(&c)))
-            .collect();
+        let corners = |t: &[u32; 3]| -> Option<[Vec3; 3]> {
+            let vertex = |i: u32| positions.get(i as usize).copied();
+            Some([vertex(t[0])?, vertex(t[1])?, vertex(t[2])?])
+        };
+        // Boxes and blocks are independent per triangle and per block: both in parallel
+        // (on a 1M-triangle mesh they were a fifth of the build on one thread).
+        let mut bounds: Vec<Aabb> = huge_pages::with_capacity(indices.len());
+        bounds.par_extend(
+            indices
+                .par_iter()
+                .map(|t| corners(t).map_or(Aabb::EMPTY, |c| Aabb::from_points(&c))),
+        );
         let bvh = Bvh::build_blocks(&bounds);
         let blocks = Triangle4::blocks(bvh.primitive_order(), |_, i| {
-            let edges = match corners[i as usize] {
+            let edges = match corners(&indices[i as usize]) {
                 Some([p0, p1, p2]) => [p0, p1 - p0, p2 - p0],
                 None => [Vec3::ZERO; 3],
             };
