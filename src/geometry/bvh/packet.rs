@@ -18,6 +18,8 @@
 
 use std::mem::MaybeUninit;
 
+use glam::Vec4;
+
 use super::node::{ChildRef, ROBUST_EXIT_SCALE, WIDTH, WideNode, max, min};
 use crate::geometry::Ray;
 
@@ -43,6 +45,10 @@ struct PacketData {
     o: [Lanes; 3],
     inv_d: [Lanes; 3],
     negative: [[u32; PACKET]; 3],
+    /// Where the rays taking part agree in the sign of 1/d along every axis (camera rays
+    /// through neighbouring pixels almost always do): the planes they all meet first
+    /// (x, y, z) and last, as indices into [`WideNode::planes`].
+    uniform: Option<[usize; 6]>,
 }
 
 impl PacketData {
@@ -53,6 +59,7 @@ impl PacketData {
             o: [[0.0; PACKET]; 3],
             inv_d: [[1.0; PACKET]; 3],
             negative: [[0; PACKET]; 3],
+            uniform: None,
         };
         for (lane, ray) in rays.iter().enumerate() {
             if !valid[lane] {
@@ -66,27 +73,60 @@ impl PacketData {
                 data.negative[axis][lane] = if inv_d[axis] < 0.0 { u32::MAX } else { 0 };
             }
         }
+        let first = valid.iter().position(|&v| v).unwrap_or(0);
+        let agree = |axis: usize| {
+            (0..PACKET).all(|l| !valid[l] || data.negative[axis][l] == data.negative[axis][first])
+        };
+        if (0..3).all(agree) {
+            let near = |axis: usize| {
+                if data.negative[axis][first] != 0 {
+                    axis + 3
+                } else {
+                    axis
+                }
+            };
+            let far = |axis: usize| (near(axis) + 3) % 6;
+            data.uniform = Some([near(0), near(1), near(2), far(0), far(1), far(2)]);
+        }
         data
     }
 
     /// Entry distance of each ray of `live` into child `c` of `node`, +∞ where the ray
     /// misses the box within its `t_closest` or is not live: the single-ray slab test,
-    /// lane by lane.
+    /// lane by lane. With `UNIFORM` (only where [`PacketData::uniform`] is set) the near
+    /// and far planes are the same for every ray, so no lane picks between them: the
+    /// same values, fewer instructions.
     #[inline(always)]
-    fn entry(&self, node: &WideNode, c: usize, t_closest: &Lanes, live: &[bool; PACKET]) -> Lanes {
+    fn entry<const UNIFORM: bool>(
+        &self,
+        node: &WideNode,
+        c: usize,
+        t_closest: &Lanes,
+        live: &[bool; PACKET],
+    ) -> Lanes {
         let lo = [node.planes[0][c], node.planes[1][c], node.planes[2][c]];
         let hi = [node.planes[3][c], node.planes[4][c], node.planes[5][c]];
+        let order = self.uniform.unwrap_or([0, 1, 2, 3, 4, 5]);
+        let (first, last): ([f32; 3], [f32; 3]) = (
+            std::array::from_fn(|axis| node.planes[order[axis]][c]),
+            std::array::from_fn(|axis| node.planes[order[axis + 3]][c]),
+        );
         let mut entry = [0.0f32; PACKET];
         for lane in 0..PACKET {
             let mut near = [0.0f32; 3];
             let mut far = [0.0f32; 3];
             for axis in 0..3 {
                 let (o, inv) = (self.o[axis][lane], self.inv_d[axis][lane]);
-                let to_lo = (lo[axis] - o) * inv;
-                let to_hi = (hi[axis] - o) * inv;
-                let m = self.negative[axis][lane];
-                near[axis] = f32::from_bits((to_hi.to_bits() & m) | (to_lo.to_bits() & !m));
-                far[axis] = f32::from_bits((to_lo.to_bits() & m) | (to_hi.to_bits() & !m));
+                if UNIFORM {
+                    near[axis] = (first[axis] - o) * inv;
+                    far[axis] = (last[axis] - o) * inv;
+                } else {
+                    let to_lo = (lo[axis] - o) * inv;
+                    let to_hi = (hi[axis] - o) * inv;
+                    let m = self.negative[axis][lane];
+                    near[axis] = f32::from_bits((to_hi.to_bits() & m) | (to_lo.to_bits() & !m));
+                    far[axis] = f32::from_bits((to_lo.to_bits() & m) | (to_hi.to_bits() & !m));
+                }
             }
             // The same nesting as `WideNode::intersect`, so the same bits.
             let t0 = max(near[0], max(near[1], max(near[2], 0.0)));
@@ -106,32 +146,32 @@ impl PacketData {
 /// single-ray traversal decides when it pops a box.
 #[inline(always)]
 fn reaching(entry: &Lanes, t_closest: &Lanes) -> u32 {
-    let mut mask = 0;
-    for lane in 0..PACKET {
-        let reaches = entry[lane] < f32::INFINITY && entry[lane] <= t_closest[lane];
-        mask |= (reaches as u32) << lane;
-    }
-    mask
+    let half = |h: usize| {
+        let e = Vec4::from_slice(&entry[4 * h..4 * h + 4]);
+        let t = Vec4::from_slice(&t_closest[4 * h..4 * h + 4]);
+        (e.cmplt(Vec4::INFINITY) & e.cmple(t)).bitmask()
+    };
+    half(0) | half(1) << 4
 }
 
 /// Bit `lane` set where `entry[lane]` is finite: the rays that entered a box just tested.
 #[inline(always)]
 fn entered(entry: &Lanes) -> u32 {
-    let mut mask = 0;
-    for (lane, &t) in entry.iter().enumerate() {
-        mask |= ((t < f32::INFINITY) as u32) << lane;
-    }
-    mask
+    let half = |h: usize| {
+        Vec4::from_slice(&entry[4 * h..4 * h + 4])
+            .cmplt(Vec4::INFINITY)
+            .bitmask()
+    };
+    half(0) | half(1) << 4
 }
 
 /// The smallest lane of `entry` (the packet's nearest entry, for ordering children).
 #[inline(always)]
 fn nearest(entry: &Lanes) -> f32 {
-    let mut m = entry[0];
-    for &t in &entry[1..] {
-        m = min(m, t);
-    }
-    m
+    // Halves first, then across one register (entries are never NaN, so `minps` here
+    // picks what the scalar `min` would).
+    let (a, b) = (Vec4::from_slice(&entry[..4]), Vec4::from_slice(&entry[4..]));
+    a.min(b).min_element()
 }
 
 /// Closest hits of a packet; see [`super::Bvh::closest_hit_packet`]. `nodes` must be
@@ -211,12 +251,33 @@ fn closest_hit_lanes<F: FnMut(u32, u32, u32, &mut Lanes)>(
     depth: usize,
     rays: &[Ray; PACKET],
     t_max: &Lanes,
+    leaf: F,
+) -> Lanes {
+    let valid: [bool; PACKET] =
+        std::array::from_fn(|l| rays[l].o.is_finite() && rays[l].d.is_finite() && t_max[l] > 0.0);
+    if !valid.contains(&true) {
+        return std::array::from_fn(|_| f32::NEG_INFINITY);
+    }
+    let data = PacketData::new(rays, &valid);
+    if data.uniform.is_some() {
+        walk::<true, F>(nodes, depth, &data, &valid, t_max, leaf)
+    } else {
+        walk::<false, F>(nodes, depth, &data, &valid, t_max, leaf)
+    }
+}
+
+/// The walk of [`closest_hit_lanes`], with the slab test of [`PacketData::entry`].
+#[inline(always)]
+fn walk<const UNIFORM: bool, F: FnMut(u32, u32, u32, &mut Lanes)>(
+    nodes: &[WideNode],
+    depth: usize,
+    data: &PacketData,
+    valid: &[bool; PACKET],
+    t_max: &Lanes,
     mut leaf: F,
 ) -> Lanes {
     // A lane takes part when its ray is finite and its interval (0, t_max) is not empty;
     // the others keep t_closest = −∞, which no box entry (≥ 0) reaches.
-    let valid: [bool; PACKET] =
-        std::array::from_fn(|l| rays[l].o.is_finite() && rays[l].d.is_finite() && t_max[l] > 0.0);
     let mut t_closest: Lanes = std::array::from_fn(|l| {
         if valid[l] {
             t_max[l]
@@ -224,10 +285,6 @@ fn closest_hit_lanes<F: FnMut(u32, u32, u32, &mut Lanes)>(
             f32::NEG_INFINITY
         }
     });
-    if !valid.contains(&true) {
-        return t_closest;
-    }
-    let data = PacketData::new(rays, &valid);
     let needed = (WIDTH - 1) * depth + 1;
     let mut fixed = [MaybeUninit::<Entry>::uninit(); STACK_SIZE];
     let mut heap = Vec::new();
@@ -263,7 +320,7 @@ fn closest_hit_lanes<F: FnMut(u32, u32, u32, &mut Lanes)>(
                 if node.planes[0][c] == f32::INFINITY {
                     continue;
                 }
-                let e = data.entry(node, c, &t_closest, &live);
+                let e = data.entry::<UNIFORM>(node, c, &t_closest, &live);
                 let near = nearest(&e);
                 if near < f32::INFINITY {
                     // Insertion by the packet's nearest entry, farthest first.

@@ -95,7 +95,7 @@ fn deep_trees_and_every_instruction_set_walk_the_same_way() {
     let (positions, indices) = soup(&mut rng);
     let set = TriangleSet::new(&positions, &indices);
     let bvh = set.bvh();
-    let mut visited = 0;
+    let (mut visited, mut uniform) = (0, 0);
     for (rays, t_max) in packets(&mut rng, 200) {
         // A leaf that shortens every ray reaching it a little: the walk (leaves in
         // order, with the rays reaching each) and the final distances must agree.
@@ -118,8 +118,24 @@ fn deep_trees_and_every_instruction_set_walk_the_same_way() {
         visited += dispatched.0.len();
         assert_eq!(dispatched, heap);
         assert_eq!(dispatched, plain);
+        // Packets whose rays share their octant walk with one near plane per axis; the
+        // general slab test (a near plane per ray) must walk them the same way.
+        let valid: [bool; PACKET] = std::array::from_fn(|l| {
+            rays[l].o.is_finite() && rays[l].d.is_finite() && t_max[l] > 0.0
+        });
+        if valid.contains(&true) {
+            let data = PacketData::new(&rays, &valid);
+            if data.uniform.is_some() {
+                uniform += 1;
+                let general = walk(&|leaf| {
+                    super::walk::<false, _>(nodes, depth, &data, &valid, &t_max, leaf)
+                });
+                assert_eq!(dispatched, general);
+            }
+        }
     }
     assert!(visited > 2000, "{visited} leaves visited");
+    assert!(uniform > 60, "{uniform} packets of one octant");
 }
 
 #[test]
