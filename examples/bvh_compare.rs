@@ -9,22 +9,23 @@
 //! `--dump DIR` also writes each mesh and the rays as raw little-endian files for
 //! `benches/embree_compare.py`.
 //!
-//! Measured on the 2-core development machine on 2026-11-26 (AMD EPYC, AVX-512 present
-//! but the build targets baseline x86-64, with AVX2 kernels chosen at run time where
-//! they exist; Embree 4.4 via `embreex` picks its widest ISA), Mrays/s, median of 5, 2²⁰
-//! rays of each kind; see BENCHMARKS.md, session 16, for Embree 3's single rays and
-//! packets on the same rays:
+//! Measured on the 2-core development machine on 2026-11-26, session 17 (AMD EPYC,
+//! AVX-512 present but the build targets baseline x86-64, with AVX2 kernels chosen at run
+//! time where they exist; Embree 4.4 via `embreex` picks its widest ISA), Mrays/s, the
+//! median of three rounds of medians of 5, 2²⁰ rays of each kind; build times here are
+//! single builds (`examples/bvh_build.rs` takes medians); see BENCHMARKS.md, session 17,
+//! for Embree 3's single rays, packets and build on the same rays and meshes:
 //!
 //! | mesh | BVH | build s | closest 1 thr | closest 2 thr | any-hit 1 thr | any-hit 2 thr |
 //! |---|---|---|---|---|---|---|
-//! | 100k | lightlab BVH4 | 0.021 | 13.56 | 28.70 | 5.67 | 11.16 |
-//! | 100k | lightlab BVH4, packets of 8 (coherent) | | 18.29 | 36.57 | | |
-//! | 100k | obvhs CWBVH (medium_build) | 0.036 | 5.42 | 11.02 | 3.14 | 6.05 |
-//! | 100k | Embree 4 (embreex) | 0.052 | 11.75 | 23.05 | 4.83 | 9.18 |
-//! | 1M | lightlab BVH4 | 0.282 | 9.16 | 19.20 | 4.30 | 8.09 |
-//! | 1M | lightlab BVH4, packets of 8 (coherent) | | 11.03 | 21.96 | | |
-//! | 1M | obvhs CWBVH (medium_build) | 0.557 | 4.81 | 9.84 | 2.38 | 4.75 |
-//! | 1M | Embree 4 (embreex) | 0.663 | 9.14 | 18.29 | 2.82 | 5.10 |
+//! | 100k | lightlab BVH4 | 0.035 | 14.19 | 28.51 | 5.43 | 10.58 |
+//! | 100k | lightlab BVH4, packets of 8 (coherent) | | 21.74 | 43.23 | | |
+//! | 100k | obvhs CWBVH (medium_build) | 0.049 | 5.37 | 11.16 | 2.95 | 5.88 |
+//! | 100k | Embree 4 (embreex) | 0.047 | 11.62 | 23.11 | 4.71 | 8.96 |
+//! | 1M | lightlab BVH4 | 0.265 | 9.31 | 18.88 | 4.20 | 8.41 |
+//! | 1M | lightlab BVH4, packets of 8 (coherent) | | 12.76 | 24.55 | | |
+//! | 1M | obvhs CWBVH (medium_build) | 0.571 | 4.82 | 9.84 | 2.48 | 4.86 |
+//! | 1M | Embree 4 (embreex) | 0.622 | 9.29 | 18.37 | 2.47 | 4.59 |
 //!
 //! The machine is shared, so 2-thread figures in particular vary by ±20 % between runs.
 
