@@ -178,10 +178,10 @@ static int builds(const char *dir, int runs, int threads) {
 }
 
 int main(int argc, char **argv) {
-    if ((argc == 4 || argc == 5) && strcmp(argv[2], "--builds") == 0) {
+    if ((argc == 4 || argc == 5) && strcmp(argv[2], "--builds") == 0 && atoi(argv[3]) > 0) {
         return builds(argv[1], atoi(argv[3]), argc == 5 ? atoi(argv[4]) : 0);
     }
-    if (argc != 2) {
+    if (argc != 2 || strcmp(argv[1], "--builds") == 0) {
         fprintf(stderr, "usage: embree_packets DIR [--builds N [THREADS]] (DIR from bvh_compare --dump DIR)\n");
         return 2;
     }

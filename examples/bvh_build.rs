@@ -17,6 +17,7 @@ fn main() {
         .position(|a| a == "--runs")
         .and_then(|i| args.get(i + 1))
         .map_or(9, |s| s.parse().expect("--runs takes a count"));
+    assert!(runs > 0, "--runs takes a count of at least 1");
     let only = args
         .iter()
         .position(|a| a == "--mesh")

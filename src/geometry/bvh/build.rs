@@ -11,7 +11,7 @@
 
 use super::huge_pages;
 use super::node::MAX_LEAF_SIZE;
-use super::prim_ref::{Binning, BuildBox, PrimRef, bounds_of};
+use super::prim_ref::{Binning, BuildBox, PrimRef, bounds_of, boxes_of};
 use crate::geometry::Aabb;
 use rayon::prelude::*;
 
@@ -113,10 +113,11 @@ pub fn build_binary(bounds: &[Aabb], kind: LeafKind) -> BinaryBvh {
     let mut nodes = huge_pages::with_capacity(2 * bounds.len() - 1);
     nodes.par_extend(rayon::iter::repeat_n(unused, 2 * bounds.len() - 1));
     let input = Input { kind };
-    let boxes = refs
-        .par_chunks(PARALLEL_THRESHOLD)
-        .map(bounds_of)
-        .reduce(|| EMPTY_BOXES, |a, b| (a.0.union(b.0), a.1.union(b.1)));
+    let (b, c) = refs.par_chunks(PARALLEL_THRESHOLD).map(boxes_of).reduce(
+        || (BuildBox::EMPTY, BuildBox::EMPTY),
+        |x, y| (x.0.union(y.0), x.1.union(y.1)),
+    );
+    let boxes = (b.aabb(), c.aabb());
     build_subtree(&input, &mut nodes, 0, &mut refs, boxes, 0, 0);
     let order: Vec<u32> = refs.par_iter().map(|r| r.id()).collect();
     BinaryBvh { nodes, order }
@@ -232,17 +233,32 @@ fn sah_split(
     if n == 1 {
         return Some(Split::Leaf);
     }
-    // A block leaf holds up to MAX_LEAF_SIZE for the cost of one traversal step, which no
-    // split beats: C(leaf) = 1 ≤ C_trav + (A_L·C_L + A_R·C_R)/A. Only an infinite parent
-    // area (∞/∞) would make the comparison below fail, so the binning is skipped for
-    // all other such nodes: about half the nodes of a block tree.
-    if input.kind == LeafKind::Blocks
+    if certain_leaf(input.kind, n, bounds) {
+        return Some(Split::Leaf);
+    }
+    binned_split(input, prims, bounds, centroid_bounds)
+}
+
+/// True when a node of `n` primitives in `bounds` is a leaf whatever its split: a block
+/// leaf holds up to MAX_LEAF_SIZE for the cost of one traversal step, which no split
+/// beats, C(leaf) = 1 ≤ C_trav + (A_L·C_L + A_R·C_R)/A. Only an infinite parent area
+/// (∞/∞) could make [`binned_split`]'s comparison fail, so such nodes are left to it; for
+/// all others the binning is skipped: about half the nodes of a block tree.
+fn certain_leaf(kind: LeafKind, n: usize, bounds: &Aabb) -> bool {
+    kind == LeafKind::Blocks
         && n <= MAX_LEAF_SIZE
         && BLOCK_COST <= TRAVERSAL_COST
         && bounds.surface_area() != f32::INFINITY
-    {
-        return Some(Split::Leaf);
-    }
+}
+
+/// [`sah_split`] by binning, for nodes of two or more primitives.
+fn binned_split(
+    input: &Input,
+    prims: &[PrimRef],
+    bounds: &Aabb,
+    centroid_bounds: &Aabb,
+) -> Option<Split> {
+    let n = prims.len();
     let extent = centroid_bounds.extent();
     let binning = Binning::new(centroid_bounds);
     let mut bins = [[(BuildBox::EMPTY, 0u32); BIN_COUNT]; 3];
@@ -381,6 +397,39 @@ mod tests {
             }
         }
         assert!(seen.iter().all(|&s| s));
+    }
+
+    #[test]
+    fn nodes_skipped_as_certain_leaves_are_leaves_by_the_binned_sah_too() {
+        let mut rng = crate::sampling::Rng32::new(5);
+        let mut u = || rng.next_f32();
+        let input = Input {
+            kind: LeafKind::Blocks,
+        };
+        let mut checked = 0;
+        for round in 0..20_000 {
+            let n = 2 + round % (2 * MAX_LEAF_SIZE - 1);
+            // Boxes of every shape: spread, tiny, flat, points, nested, far apart.
+            let scale = [1e-6, 1.0, 1e3, 1e30][round % 4];
+            let bounds: Vec<Aabb> = (0..n)
+                .map(|_| {
+                    let p = Vec3::new(u(), u(), u()) * scale;
+                    let mut size = Vec3::new(u(), u(), u()) * scale * u();
+                    size[round % 3] *= (round % 5 == 0) as u32 as f32;
+                    Aabb::EMPTY.grow(p).grow(p + size)
+                })
+                .collect();
+            let prims: Vec<PrimRef> = (bounds.iter().enumerate())
+                .map(|(i, b)| PrimRef::new(BuildBox::from(b), i as u32))
+                .collect();
+            let (all, centroids) = bounds_of(&prims);
+            if certain_leaf(input.kind, n, &all) {
+                checked += 1;
+                let split = binned_split(&input, &prims, &all, &centroids);
+                assert!(matches!(split, Some(Split::Leaf) | None), "round {round}");
+            }
+        }
+        assert!(checked > 5_000, "{checked}");
     }
 
     #[test]

@@ -82,8 +82,13 @@ pub fn collapse(tree: &BinaryBvh) -> WideTree {
         .for_each(|(to, (sub, start))| {
             for (to, node) in to.iter_mut().zip(&sub.nodes) {
                 *to = *node;
-                for child in to.children.iter_mut().filter(|c| !c.is_leaf()) {
-                    *child = ChildRef::inner(child.0 + start);
+                // Inner children of used lanes (an unused lane's box is empty: lower
+                // bound +∞) move with their subtree.
+                for lane in 0..WIDTH {
+                    let child = &mut to.children[lane];
+                    if to.planes[0][lane] != f32::INFINITY && !child.is_leaf() {
+                        *child = ChildRef::inner(child.0 + start);
+                    }
                 }
             }
         });
@@ -154,7 +159,7 @@ fn fill(
 pub fn lay_out_blocks(nodes: &mut [WideNode], order: &[u32]) -> Vec<u32> {
     // Every leaf takes one block, so the k-th leaf in node order starts at k · BLOCK:
     // the leaves' old ranges in that order give the new order, and each node's first
-    // leaf number (a running count) its new references; both passes run in parallel.
+    // leaf number (a running count, the one serial pass) its new references.
     let ranges: Vec<(u32, u32)> = nodes
         .par_iter()
         .flat_map_iter(|node| leaves(node).map(|c| c.leaf_range()))
@@ -233,10 +238,10 @@ mod tests {
     use super::*;
     use crate::geometry::Aabb;
 
-    /// The children of the tree's nodes, depth first in lane order from the root, with
-    /// inner references replaced by the child's depth-first number and leaves given as
-    /// their (block-laid, if `order` is given) primitive indices: what traversal sees,
-    /// whatever the node order in memory.
+    /// Every lane of the tree's nodes, depth first in lane order from the root, as its
+    /// box's bits and, for a leaf, its primitives' indices through `order` (empty for
+    /// an inner child, a marker for an unused lane): what traversal sees, whatever the
+    /// node order in memory.
     fn walk(tree: &WideTree, order: &[u32]) -> Vec<([u32; 6], Vec<u32>)> {
         let mut out = Vec::new();
         let mut stack = vec![0u32];

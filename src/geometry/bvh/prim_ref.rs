@@ -1,7 +1,7 @@
 //! What the binned SAH build moves and bins: primitive records (box and index), boxes
 //! with their three coordinates in one SSE register, and the centroid-to-bin map.
 
-use glam::{Vec3A, Vec4};
+use glam::{BVec4A, Vec3A, Vec4};
 
 use super::build::BIN_COUNT;
 use crate::geometry::Aabb;
@@ -79,13 +79,14 @@ impl PrimRef {
         }
     }
 
-    /// The box. (`Vec3A::from_vec4` is free where glam keeps vectors in SSE or NEON
-    /// registers; the fourth lane then keeps the index bits, which no operation on a
-    /// `Vec3A` reads.)
+    /// The box. The fourth lane, which holds the index bits, is cleared first (a blend,
+    /// no arithmetic): `Vec3A` operations compute that lane too, and small indices are
+    /// denormals as floats, which some CPUs handle slowly.
     #[inline(always)]
     pub fn bounds(&self) -> BuildBox {
+        let xyz = BVec4A::new(true, true, true, false);
         BuildBox {
-            min: Vec3A::from_vec4(self.lower),
+            min: Vec3A::from_vec4(Vec4::select(xyz, self.lower, Vec4::ZERO)),
             max: self.upper,
         }
     }
@@ -99,12 +100,19 @@ impl PrimRef {
 
 /// The box of the primitives and the box of their centroids.
 pub(super) fn bounds_of(prims: &[PrimRef]) -> (Aabb, Aabb) {
-    let (b, c) = prims
+    let (b, c) = boxes_of(prims);
+    (b.aabb(), c.aabb())
+}
+
+/// [`bounds_of`] before the conversion, for reductions over chunks: unions of
+/// [`BuildBox`]es (`minps`, `maxps`) in order give the same bits, signs of zeros
+/// included, as one pass over all the primitives.
+pub(super) fn boxes_of(prims: &[PrimRef]) -> (BuildBox, BuildBox) {
+    prims
         .iter()
         .fold((BuildBox::EMPTY, BuildBox::EMPTY), |(b, c), p| {
             (b.union(p.bounds()), c.grow(p.bounds().centroid()))
-        });
-    (b.aabb(), c.aabb())
+        })
 }
 
 /// Where centroids fall among the bins of a node: bin = ⌊(c − min) · scale⌋ per axis, all

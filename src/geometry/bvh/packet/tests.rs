@@ -127,6 +127,17 @@ fn deep_trees_and_every_instruction_set_walk_the_same_way() {
             let data = PacketData::new(&rays, &valid);
             if data.uniform.is_some() {
                 uniform += 1;
+                // Entry by entry, every child of every node, bit for bit.
+                let live = valid;
+                for node in nodes.iter() {
+                    for c in 0..WIDTH {
+                        let bits = |e: Lanes| e.map(f32::to_bits);
+                        assert_eq!(
+                            bits(data.entry::<true>(node, c, &t_max, &live)),
+                            bits(data.entry::<false>(node, c, &t_max, &live))
+                        );
+                    }
+                }
                 let general = walk(&|leaf| {
                     super::walk::<false, _>(nodes, depth, &data, &valid, &t_max, leaf)
                 });
@@ -135,7 +146,7 @@ fn deep_trees_and_every_instruction_set_walk_the_same_way() {
         }
     }
     assert!(visited > 2000, "{visited} leaves visited");
-    assert!(uniform > 60, "{uniform} packets of one octant");
+    assert!(uniform >= 40, "{uniform} packets of one octant");
 }
 
 #[test]
