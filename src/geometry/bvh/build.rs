@@ -139,7 +139,9 @@ fn build_subtree(
     first: u32,
     depth: usize,
 ) {
-    let split = if depth < MAX_SAH_DEPTH {
+    let split = if certain_leaf(input.kind, prims.len(), &bounds) {
+        Some(Split::Leaf)
+    } else if depth < MAX_SAH_DEPTH {
         sah_split(input, prims, &bounds, &centroid_bounds)
     } else {
         None
@@ -221,6 +223,18 @@ enum Split {
     At { axis: usize, bin: usize },
 }
 
+/// True when a node of `n` primitives in `bounds` is a leaf whatever its split: a block
+/// leaf holds up to MAX_LEAF_SIZE for the cost of one traversal step, which no split
+/// beats, C(leaf) = 1 ≤ C_trav + (A_L·C_L + A_R·C_R)/A. Only an infinite parent area
+/// (∞/∞) could make [`sah_split`]'s comparison fail, so such nodes are left to it; for
+/// all others the binning is skipped: about half the nodes of a block tree.
+fn certain_leaf(kind: LeafKind, n: usize, bounds: &Aabb) -> bool {
+    kind == LeafKind::Blocks
+        && n <= MAX_LEAF_SIZE
+        && BLOCK_COST <= TRAVERSAL_COST
+        && bounds.surface_area() != f32::INFINITY
+}
+
 /// The best SAH split (Wald 2007, §3), `Leaf` when a leaf costs less, or `None` when the
 /// centroids cannot be separated by binning.
 fn sah_split(
@@ -233,32 +247,7 @@ fn sah_split(
     if n == 1 {
         return Some(Split::Leaf);
     }
-    if certain_leaf(input.kind, n, bounds) {
-        return Some(Split::Leaf);
-    }
-    binned_split(input, prims, bounds, centroid_bounds)
-}
 
-/// True when a node of `n` primitives in `bounds` is a leaf whatever its split: a block
-/// leaf holds up to MAX_LEAF_SIZE for the cost of one traversal step, which no split
-/// beats, C(leaf) = 1 ≤ C_trav + (A_L·C_L + A_R·C_R)/A. Only an infinite parent area
-/// (∞/∞) could make [`binned_split`]'s comparison fail, so such nodes are left to it; for
-/// all others the binning is skipped: about half the nodes of a block tree.
-fn certain_leaf(kind: LeafKind, n: usize, bounds: &Aabb) -> bool {
-    kind == LeafKind::Blocks
-        && n <= MAX_LEAF_SIZE
-        && BLOCK_COST <= TRAVERSAL_COST
-        && bounds.surface_area() != f32::INFINITY
-}
-
-/// [`sah_split`] by binning, for nodes of two or more primitives.
-fn binned_split(
-    input: &Input,
-    prims: &[PrimRef],
-    bounds: &Aabb,
-    centroid_bounds: &Aabb,
-) -> Option<Split> {
-    let n = prims.len();
     let extent = centroid_bounds.extent();
     let binning = Binning::new(centroid_bounds);
     let mut bins = [[(BuildBox::EMPTY, 0u32); BIN_COUNT]; 3];
@@ -367,98 +356,4 @@ fn median_split(prims: &mut [PrimRef], centroid_bounds: &Aabb) -> usize {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use glam::Vec3;
-
-    /// Checks every reachable node: leaves cover the primitive order once, boxes nest.
-    fn check(tree: &BinaryBvh, bounds: &[Aabb]) {
-        let mut seen = vec![false; bounds.len()];
-        let mut stack = vec![0u32];
-        while let Some(i) = stack.pop() {
-            let node = tree.nodes[i as usize];
-            if node.count > 0 {
-                assert!(node.count as usize <= MAX_LEAF_SIZE.max(1));
-                for k in node.first_or_right..node.first_or_right + node.count {
-                    let p = tree.order[k as usize] as usize;
-                    assert!(!seen[p]);
-                    seen[p] = true;
-                    assert_eq!(node.bounds.union(bounds[p]), node.bounds);
-                }
-            } else {
-                let (left, right) = node.children(i);
-                for child in [left, right] {
-                    assert_eq!(
-                        node.bounds.union(tree.nodes[child as usize].bounds),
-                        node.bounds
-                    );
-                    stack.push(child);
-                }
-            }
-        }
-        assert!(seen.iter().all(|&s| s));
-    }
-
-    #[test]
-    fn nodes_skipped_as_certain_leaves_are_leaves_by_the_binned_sah_too() {
-        let mut rng = crate::sampling::Rng32::new(5);
-        let mut u = || rng.next_f32();
-        let input = Input {
-            kind: LeafKind::Blocks,
-        };
-        let mut checked = 0;
-        for round in 0..20_000 {
-            let n = 2 + round % (2 * MAX_LEAF_SIZE - 1);
-            // Boxes of every shape: spread, tiny, flat, points, nested, far apart.
-            let scale = [1e-6, 1.0, 1e3, 1e30][round % 4];
-            let bounds: Vec<Aabb> = (0..n)
-                .map(|_| {
-                    let p = Vec3::new(u(), u(), u()) * scale;
-                    let mut size = Vec3::new(u(), u(), u()) * scale * u();
-                    size[round % 3] *= (round % 5 == 0) as u32 as f32;
-                    Aabb::EMPTY.grow(p).grow(p + size)
-                })
-                .collect();
-            let prims: Vec<PrimRef> = (bounds.iter().enumerate())
-                .map(|(i, b)| PrimRef::new(BuildBox::from(b), i as u32))
-                .collect();
-            let (all, centroids) = bounds_of(&prims);
-            if certain_leaf(input.kind, n, &all) {
-                checked += 1;
-                let split = binned_split(&input, &prims, &all, &centroids);
-                assert!(matches!(split, Some(Split::Leaf) | None), "round {round}");
-            }
-        }
-        assert!(checked > 5_000, "{checked}");
-    }
-
-    #[test]
-    fn trees_are_valid_for_spread_identical_and_flat_boxes() {
-        let spread: Vec<Aabb> = (0..5000)
-            .map(|i| Aabb::EMPTY.grow(Vec3::new((i * 7919 % 5000) as f32, (i % 13) as f32, 0.0)))
-            .collect();
-        let identical = vec![
-            Aabb {
-                min: Vec3::ZERO,
-                max: Vec3::ONE
-            };
-            1000
-        ];
-        let flat: Vec<Aabb> = (0..100)
-            .map(|i| Aabb::EMPTY.grow(Vec3::X * i as f32).grow(Vec3::Y))
-            .collect();
-        let with_empty = vec![
-            Aabb::EMPTY,
-            Aabb {
-                min: Vec3::ZERO,
-                max: Vec3::ONE,
-            },
-            Aabb::EMPTY,
-        ];
-        for bounds in [spread, identical, flat, with_empty] {
-            for kind in [LeafKind::Single, LeafKind::Blocks] {
-                check(&build_binary(&bounds, kind), &bounds);
-            }
-        }
-    }
-}
+mod tests;

@@ -20,7 +20,7 @@ use std::mem::MaybeUninit;
 
 use glam::Vec4;
 
-use super::node::{ChildRef, ROBUST_EXIT_SCALE, WIDTH, WideNode, max, min};
+use super::node::{ChildRef, ROBUST_EXIT_SCALE, RayData, WIDTH, WideNode, max, min};
 use crate::geometry::Ray;
 
 /// Rays per packet.
@@ -78,15 +78,12 @@ impl PacketData {
             (0..PACKET).all(|l| !valid[l] || data.negative[axis][l] == data.negative[axis][first])
         };
         if (0..3).all(agree) {
-            let near = |axis: usize| {
-                if data.negative[axis][first] != 0 {
-                    axis + 3
-                } else {
-                    axis
-                }
-            };
-            let far = |axis: usize| (near(axis) + 3) % 6;
-            data.uniform = Some([near(0), near(1), near(2), far(0), far(1), far(2)]);
+            // Every ray's planes are then the first valid ray's, as `RayData` picks them.
+            data.uniform = RayData::new(&rays[first]).map(|r| {
+                let [n0, n1, n2] = r.near;
+                let [f0, f1, f2] = r.far;
+                [n0, n1, n2, f0, f1, f2]
+            });
         }
         data
     }
