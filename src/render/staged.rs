@@ -60,15 +60,18 @@ impl Stages {
         self.sample_lights(scene, estimator, lanes);
         for (k, i) in order.enumerate() {
             let (p, hit) = &mut traced[i];
-            let l = match (&self.begun[k], hit) {
+            // Each arm hands its estimate on itself: merged into one value first, the
+            // estimate went through the stack, whose wide reload stalled on the narrow
+            // stores that had just written it.
+            match (&self.begun[k], hit) {
                 (Begun::Light(staged), Some(hit)) => {
                     let ls = self.samples[k];
-                    estimator.finish(scene, &p.ray, hit, staged, ls, &mut p.sampler)
+                    let l = estimator.finish(scene, &p.ray, hit, staged, ls, &mut p.sampler);
+                    sink(p.x, p.y, p.film, job.counted(l));
                 }
-                (Begun::Done(l), _) => *l,
+                (Begun::Done(l), _) => sink(p.x, p.y, p.film, job.counted(*l)),
                 (Begun::Light(_), None) => unreachable!("a staged estimate has a hit"),
-            };
-            sink(p.x, p.y, p.film, job.counted(l));
+            }
         }
     }
 

@@ -5,6 +5,7 @@
 
 pub mod chi2;
 pub mod distribution;
+pub mod divisor;
 pub mod registry;
 pub mod rng;
 pub mod sampler;

@@ -14,14 +14,21 @@ pub fn mix64(mut x: u64) -> u64 {
     x ^ (x >> 33)
 }
 
+/// The state [`hash_words`] starts from.
+pub const HASH_START: u64 = 0x9e37_79b9_7f4a_7c15;
+
 /// Hashes a list of integers into one 64-bit key (order matters).
 #[inline]
 pub fn hash_words(words: &[u64]) -> u64 {
-    let mut h = 0x9e37_79b9_7f4a_7c15u64;
-    for &w in words {
-        h = mix64(h ^ w.wrapping_add(0x9e37_79b9_7f4a_7c15).wrapping_add(h << 6));
-    }
-    h
+    words.iter().fold(HASH_START, |h, &w| hash_more(h, w))
+}
+
+/// One step of [`hash_words`]: the state `h` after one more word `w`, so that a key
+/// shared by many hashes (a pixel's, before its sample indices) is folded in once:
+/// `hash_words(&[a, b]) == hash_more(hash_more(HASH_START, a), b)`.
+#[inline(always)]
+pub fn hash_more(h: u64, w: u64) -> u64 {
+    mix64(h ^ w.wrapping_add(0x9e37_79b9_7f4a_7c15).wrapping_add(h << 6))
 }
 
 /// Hashes `bytes` into a 64-bit key, continuing from `h`: 8-byte little-endian words
