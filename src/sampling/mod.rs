@@ -5,7 +5,6 @@
 
 pub mod chi2;
 pub mod distribution;
-pub mod divisor;
 pub mod registry;
 pub mod rng;
 pub mod sampler;

@@ -14,8 +14,11 @@ pub fn mix64(mut x: u64) -> u64 {
     x ^ (x >> 33)
 }
 
+/// 2⁶⁴ / φ, odd: the constant [`hash_words`] starts from and adds to every word.
+const GOLDEN_GAMMA: u64 = 0x9e37_79b9_7f4a_7c15;
+
 /// The state [`hash_words`] starts from.
-pub const HASH_START: u64 = 0x9e37_79b9_7f4a_7c15;
+pub const HASH_START: u64 = GOLDEN_GAMMA;
 
 /// Hashes a list of integers into one 64-bit key (order matters).
 #[inline]
@@ -28,7 +31,7 @@ pub fn hash_words(words: &[u64]) -> u64 {
 /// `hash_words(&[a, b]) == hash_more(hash_more(HASH_START, a), b)`.
 #[inline(always)]
 pub fn hash_more(h: u64, w: u64) -> u64 {
-    mix64(h ^ w.wrapping_add(0x9e37_79b9_7f4a_7c15).wrapping_add(h << 6))
+    mix64(h ^ w.wrapping_add(GOLDEN_GAMMA).wrapping_add(h << 6))
 }
 
 /// Hashes `bytes` into a 64-bit key, continuing from `h`: 8-byte little-endian words

@@ -74,8 +74,7 @@ type BlockPixel = (u32, u32, PixelStreams);
 const CHUNK: u32 = 8;
 
 /// Calls `f(sample indices, block)` for samples `samples` of every pixel of `tile` (of an
-/// image `width` pixels wide, streams of a `kind` sampler of `spp` samples per pixel keyed
-/// by `seed`): for each [`BLOCK_WIDTH`] ×
+/// image `width` pixels wide, streams of a `kind` sampler keyed by `seed`): for each [`BLOCK_WIDTH`] ×
 /// [`BLOCK_HEIGHT`] block of the image that the tile covers (blocks aligned to the image,
 /// row by row; the tile's part of it, pixels row by row), the samples in chunks of
 /// [`CHUNK`] consecutive indices.
@@ -84,7 +83,7 @@ fn sample_order(
     (x0, y0, x1, y1): Tile,
     samples: Range<u32>,
     (seed, width): (u64, u32),
-    (kind, spp): (SamplerKind, u32),
+    kind: SamplerKind,
     mut f: impl FnMut(Range<u32>, &[BlockPixel]),
 ) {
     for by in (y0 - y0 % BLOCK_HEIGHT..y1).step_by(BLOCK_HEIGHT as usize) {
@@ -94,7 +93,7 @@ fn sample_order(
             for y in by.max(y0)..(by + BLOCK_HEIGHT).min(y1) {
                 for x in bx.max(x0)..(bx + BLOCK_WIDTH).min(x1) {
                     let pixel = (y * width + x) as u64;
-                    block[n] = (x, y, PixelStreams::new(kind, seed, pixel, spp));
+                    block[n] = (x, y, PixelStreams::new(kind, seed, pixel));
                     n += 1;
                 }
             }
@@ -113,7 +112,7 @@ fn each_sample(
     tile: Tile,
     samples: Range<u32>,
     seed_width: (u64, u32),
-    kind: (SamplerKind, u32),
+    kind: SamplerKind,
     mut f: impl FnMut(u32, u32, &PixelStreams, u32),
 ) {
     sample_order(tile, samples, seed_width, kind, |chunk, block| {
@@ -138,7 +137,7 @@ impl<F: Fn(u32, u32, u64, u32) -> (Vec2, Spectrum) + Sync> TileSamples for OneBy
         sink: &mut impl FnMut(u32, u32, Vec2, Spectrum),
     ) {
         // Only the pixel's key is handed on: streams without hashed seeds.
-        let keys_only = (SamplerKind::Independent, 1);
+        let keys_only = SamplerKind::Independent;
         each_sample(tile, samples, seed_width, keys_only, |x, y, streams, s| {
             let (p, l) = (self.0)(x, y, streams.key(), s);
             sink(x, y, p, l);
@@ -191,7 +190,7 @@ impl TileSamples for CameraPackets<'_> {
             self.lanes.is_none() || self.estimator.stages(),
             "light lanes need an estimate in stages"
         );
-        let kind = (self.settings.sampler, self.settings.spp);
+        let kind = self.settings.sampler;
         if single_rays && self.lanes.is_none() {
             each_sample(tile, samples, seed_width, kind, |x, y, streams, s| {
                 let mut p = self.start(x, y, streams, s);
