@@ -62,8 +62,6 @@ impl PixelStreams {
         let key = Sampler::pixel_key(seed, pixel);
         let sobol = kind == SamplerKind::Sobol;
         PixelStreams {
-            key,
-            sample_hash: hash_more(HASH_START, key),
             seeded: if sobol { SEEDED_DIMENSIONS as u32 } else { 0 },
             sobol: std::array::from_fn(|d| {
                 if sobol {
@@ -72,6 +70,18 @@ impl PixelStreams {
                     SobolSeed::default()
                 }
             }),
+            ..PixelStreams::keyed(key)
+        }
+    }
+
+    /// The streams of the pixel whose key is `key`, with nothing hashed ahead but the
+    /// PCG stream's first round.
+    #[inline]
+    fn keyed(key: u64) -> PixelStreams {
+        PixelStreams {
+            key,
+            sample_hash: hash_more(HASH_START, key),
+            ..PixelStreams::default()
         }
     }
 
@@ -126,12 +136,7 @@ impl Sampler {
     /// [`Sampler::new`] for the pixel whose [`Sampler::pixel_key`] is `pixel_key`.
     #[inline]
     pub fn for_pixel(kind: SamplerKind, pixel_key: u64, sample_index: u32, spp: u32) -> Sampler {
-        let streams = PixelStreams {
-            key: pixel_key,
-            sample_hash: hash_more(HASH_START, pixel_key),
-            ..PixelStreams::default()
-        };
-        Self::for_streams(kind, &streams, sample_index, spp)
+        Self::for_streams(kind, &PixelStreams::keyed(pixel_key), sample_index, spp)
     }
 
     /// [`Sampler::for_pixel`] for the pixel whose streams are `streams` (made for the
@@ -360,117 +365,4 @@ pub fn permute(mut i: u32, n: u32, seed: u32) -> u32 {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn permute_is_a_bijection() {
-        for n in [1u32, 2, 3, 7, 16, 100] {
-            let mut seen = vec![false; n as usize];
-            for i in 0..n {
-                let p = permute(i, n, 0x1234_5678);
-                assert!(!seen[p as usize]);
-                seen[p as usize] = true;
-            }
-        }
-    }
-
-    #[test]
-    fn equal_area_cells_cover_each_cell_once() {
-        for n in [1u32, 2, 3, 5, 8, 16, 17] {
-            let mut area = 0.0;
-            for c in 0..n {
-                let lo = equal_area_cell(c, n, Vec2::ZERO);
-                let hi = equal_area_cell(c, n, Vec2::splat(ONE_MINUS_EPSILON));
-                area += (hi.x - lo.x) * (hi.y - lo.y);
-                assert!(lo.cmpge(Vec2::ZERO).all() && hi.cmplt(Vec2::ONE).all());
-            }
-            assert!((area - 1.0).abs() < 1e-4, "n = {n}: area {area}");
-        }
-    }
-
-    #[test]
-    fn every_sampler_stays_in_unit_interval() {
-        for kind in SamplerKind::ALL {
-            for s in 0..64 {
-                let mut sampler = Sampler::new(kind, 7, 3, s, 64);
-                for _ in 0..10 {
-                    let x = sampler.next_1d();
-                    let p = sampler.next_2d();
-                    assert!((0.0..1.0).contains(&x) && (0.0..1.0).contains(&p.x));
-                    assert!((0.0..1.0).contains(&p.y));
-                }
-            }
-        }
-    }
-
-    /// A sampler made from a pixel's streams draws what one made from the pixel's key
-    /// draws, for every kind, past the seeded dimensions and past Sobol's last index.
-    #[test]
-    fn streams_draw_what_the_key_draws() {
-        for kind in SamplerKind::ALL {
-            for pixel in [0u64, 5, 1 << 20] {
-                let streams = PixelStreams::new(kind, 11, pixel);
-                assert_eq!(streams.key(), Sampler::pixel_key(11, pixel));
-                for s in [0u32, 1, 7, 63, SOBOL_MAX_SAMPLES] {
-                    let mut a = Sampler::new(kind, 11, pixel, s, 64);
-                    let mut b = Sampler::for_streams(kind, &streams, s, 64);
-                    for d in 0..3 * SEEDED_DIMENSIONS {
-                        let (x, y) = if d % 3 == 1 {
-                            (Vec2::splat(a.next_1d()), Vec2::splat(b.next_1d()))
-                        } else {
-                            (a.next_2d(), b.next_2d())
-                        };
-                        assert_eq!(
-                            x.to_array().map(f32::to_bits),
-                            y.to_array().map(f32::to_bits)
-                        );
-                    }
-                }
-            }
-        }
-        // The seeds are hashed for Sobol only, and differ from dimension to dimension.
-        let sobol = PixelStreams::new(SamplerKind::Sobol, 11, 5);
-        assert_eq!(sobol.seeded, SEEDED_DIMENSIONS as u32);
-        assert_ne!(sobol.sobol[0], sobol.sobol[1]);
-        assert_eq!(PixelStreams::new(SamplerKind::Stratified, 11, 5).seeded, 0);
-    }
-
-    /// The independent stream of a sample is PCG32 keyed by hash(pixel key, sample
-    /// index), however the hash is split between pixel and sample.
-    #[test]
-    fn independent_streams_hash_pixel_and_sample_index() {
-        for (pixel, s) in [(0u64, 0u32), (5, 1), (1 << 20, 1000), (7, u32::MAX)] {
-            let key = Sampler::pixel_key(3, pixel);
-            let streams = PixelStreams::new(SamplerKind::Independent, 3, pixel);
-            let mut a = Sampler::new(SamplerKind::Independent, 3, pixel, s, 16);
-            let mut b = Sampler::for_streams(SamplerKind::Independent, &streams, s, 16);
-            let mut rng = Rng32::new(hash_words(&[key, s as u64]));
-            for _ in 0..4 {
-                let expected = rng.next_f32().to_bits();
-                assert_eq!(a.next_1d().to_bits(), expected);
-                assert_eq!(b.next_1d().to_bits(), expected);
-            }
-        }
-    }
-
-    /// A sampler is stored per pixel between the spatial reuse's passes, whose second
-    /// pass reads the neighbours': a version 60 bytes larger made that render 0.82× as
-    /// fast.
-    #[test]
-    fn samplers_stay_small() {
-        assert!(
-            std::mem::size_of::<Sampler>() <= 112,
-            "{}",
-            std::mem::size_of::<Sampler>()
-        );
-    }
-
-    #[test]
-    fn names_round_trip() {
-        for kind in SamplerKind::ALL {
-            assert_eq!(kind.name().parse::<SamplerKind>().unwrap(), kind);
-        }
-        assert!("halton".parse::<SamplerKind>().is_err());
-    }
-}
+mod tests;
