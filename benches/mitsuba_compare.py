@@ -13,7 +13,8 @@ What is timed, per scene and configuration, interleaved over R rounds (the machi
 over minutes, so every configuration sees the same drift), reported as medians:
 - lightlab, whole process (`lightlab render … -o out.exr`: start-up, scene loading, render,
   writing), with its default strategies, and with Mitsuba's own strategies
-  (`--light-sampling area --light-select uniform --sampler independent`);
+  (`--light-sampling area --light-select uniform --sampler independent
+  --no-envmap-compensation`);
 - Mitsuba `llvm_ad_rgb` (and `scalar_rgb` with --scalar): `mi.load_file` + `mi.render` +
   evaluation, measured inside a Python process whose Mitsuba import is not counted, after
   one warm-up render of the same scene so the JIT kernel cache is warm.
@@ -36,7 +37,8 @@ LLVM_CANDIDATES = [
     "/usr/lib/aarch64-linux-gnu/libLLVM-19.so",
     "/usr/lib/llvm-19/lib/libLLVM.so",
 ]
-MITSUBA_STRATEGIES = ["--light-sampling", "area", "--light-select", "uniform", "--sampler", "independent"]
+MITSUBA_STRATEGIES = ["--light-sampling", "area", "--light-select", "uniform", "--sampler", "independent",
+                      "--no-envmap-compensation"]
 
 # Loads and renders one scene `runs` times after a warm-up; prints one time per line.
 MITSUBA = r"""

@@ -54,6 +54,8 @@ pub mod flag {
     pub const LIGHT_SAMPLING: &str = "light-sampling";
     /// `--envmap-compensation` (a switch).
     pub const ENVMAP_COMPENSATION: &str = "envmap-compensation";
+    /// `--no-envmap-compensation` (a switch: the plain distribution under `mis` too).
+    pub const NO_ENVMAP_COMPENSATION: &str = "no-envmap-compensation";
     /// `--light-select`.
     pub const LIGHT_SELECT: &str = "light-select";
     /// `--ris-candidates`.

@@ -44,9 +44,21 @@ fn augment(cmd: Command, names: &[&'static str], switch: bool) -> Command {
                 .long(flag::ENVMAP_COMPENSATION)
                 .help(
                     "MIS compensation of environment-map sampling (Karlík et al. 2019): sample \
-                     ∝ max(0, L − mean L). Unbiased only with --estimator mis, so required with it.",
+                     ∝ max(0, L − mean L). Unbiased only with --estimator mis, so required with it \
+                     (the default with mis).",
                 )
-                .action(ArgAction::SetTrue),
+                .action(ArgAction::SetTrue)
+                .overrides_with(flag::NO_ENVMAP_COMPENSATION),
+        );
+        cmd = cmd.arg(
+            Arg::new(flag::NO_ENVMAP_COMPENSATION)
+                .long(flag::NO_ENVMAP_COMPENSATION)
+                .help(
+                    "Environment maps sampled ∝ L under --estimator mis too (Mitsuba 3's and \
+                     pbrt-v4's choice), instead of the compensated distribution.",
+                )
+                .action(ArgAction::SetTrue)
+                .overrides_with(flag::ENVMAP_COMPENSATION),
         );
     }
     cmd
@@ -64,6 +76,9 @@ fn read(m: &ArgMatches, names: &[&str], switch: bool) -> Result<RenderPatch, cla
     }
     if switch && m.get_flag(flag::ENVMAP_COMPENSATION) {
         patch.envmap_compensation = Some(true);
+    }
+    if switch && m.get_flag(flag::NO_ENVMAP_COMPENSATION) {
+        patch.envmap_compensation = Some(false);
     }
     Ok(patch)
 }

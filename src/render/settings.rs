@@ -44,7 +44,8 @@ pub struct RenderSettings {
     /// Pixel reconstruction filter (the one-pixel box unless a scene file asks).
     pub filter: Filter,
     /// MIS compensation of environment-map sampling (Karlík et al. 2019); allowed only
-    /// with the `mis` estimator, where it stays unbiased.
+    /// with the `mis` estimator, where it stays unbiased, and on there unless
+    /// `--no-envmap-compensation` says otherwise.
     pub envmap_compensation: bool,
     /// Horizon rejection of area-light samples before the shadow ray (default on).
     pub horizon_rejection: bool,
@@ -53,8 +54,9 @@ pub struct RenderSettings {
 }
 
 impl RenderSettings {
-    /// The defaults for `scene`: MIS (one light and one BSDF sample, power heuristic) with
-    /// the best light sampling per shape, light-BVH selection and the Sobol sampler at the
+    /// The defaults for `scene`: MIS (one light and one BSDF sample, power heuristic,
+    /// environment maps sampled with MIS compensation) with the best light sampling per
+    /// shape, light-BVH selection and the Sobol sampler at the
     /// scene's spp, and the scene's filter, with the scene file's requests laid over them.
     pub fn for_scene(scene: &Scene) -> RenderSettings {
         Self::build(scene, &[]).expect("a scene's own requests are valid")
@@ -90,7 +92,9 @@ impl RenderSettings {
             pass: p.pass.unwrap_or(Pass::WHOLE),
             first_sample: 0,
             filter: scene.filter,
-            envmap_compensation: p.envmap_compensation.unwrap_or(false),
+            envmap_compensation: p
+                .envmap_compensation
+                .unwrap_or(p.estimator.unwrap_or(EstimatorKind::Mis) == EstimatorKind::Mis),
             horizon_rejection: p.horizon_rejection != Some(Switch::Off),
             fast_paths: p.fast_paths != Some(Switch::Off),
         };
@@ -190,7 +194,10 @@ impl RenderSettings {
             width: self.resolution.map(|r| r.0),
             height: self.resolution.map(|r| r.1),
             pass: (self.pass != Pass::WHOLE).then_some(self.pass),
-            envmap_compensation: self.envmap_compensation.then_some(true),
+            // Unset where it is what the estimator implies (on with `mis`, off otherwise).
+            envmap_compensation: (self.envmap_compensation
+                != (self.estimator == EstimatorKind::Mis))
+                .then_some(self.envmap_compensation),
             horizon_rejection: (!self.horizon_rejection).then_some(Switch::Off),
             fast_paths: (!self.fast_paths).then_some(Switch::Off),
         }
@@ -245,6 +252,17 @@ mod tests {
                 .to_string()
         };
         assert!(bad("--envmap-compensation --estimator light").contains("--estimator mis"));
+        // Compensation: on by default with mis only, off when asked; the patch gives it back.
+        let with = |text: &str| {
+            let p: RenderPatch = text.parse().unwrap();
+            let s = RenderSettings::build(&scene, &[&p]).unwrap();
+            let again = RenderSettings::build(&scene, &[&s.patch()]).unwrap();
+            assert_eq!(again.envmap_compensation, s.envmap_compensation, "{text}");
+            s.envmap_compensation
+        };
+        assert!(with("") && with("--estimator mis") && with("--envmap-compensation"));
+        assert!(!with("--no-envmap-compensation") && !with("--estimator light"));
+        assert!(!with("--estimator bsdf --no-envmap-compensation"));
         let e = bad("--ris-spatial 4");
         assert!(e.contains("--ris-spatial") && e.contains("bvh"), "{e}");
         let e = bad("--ris-spatial 4 --light-select ris --estimator cosine");

@@ -63,8 +63,9 @@ macro_rules! render_patch {
         #[derive(Clone, Debug, Default, PartialEq, Eq)]
         pub struct RenderPatch {
             $( #[doc = $doc] pub $field: Option<$ty>, )+
-            /// MIS compensation of environment-map sampling (Karlík et al. 2019); a switch
-            /// on the command line.
+            /// MIS compensation of environment-map sampling (Karlík et al. 2019): the
+            /// switches `--envmap-compensation` (true) and `--no-envmap-compensation`
+            /// (false) on the command line; unset, it is on exactly with `mis`.
             pub envmap_compensation: Option<bool>,
         }
 
@@ -86,7 +87,7 @@ macro_rules! render_patch {
                         return self.validate();
                     }
                 )+
-                if name == flag::ENVMAP_COMPENSATION {
+                if name == flag::ENVMAP_COMPENSATION || name == flag::NO_ENVMAP_COMPENSATION {
                     return Err(SettingsError::bad(name, value, "is a switch and takes no value"));
                 }
                 Err(SettingsError::UnknownFlag(name.to_string()))
@@ -107,8 +108,10 @@ macro_rules! render_patch {
             fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
                 let mut words: Vec<String> = Vec::new();
                 $( if let Some(v) = &self.$field { words.push(format!("--{} {v}", $flag)); } )+
-                if self.envmap_compensation == Some(true) {
-                    words.push(format!("--{}", flag::ENVMAP_COMPENSATION));
+                match self.envmap_compensation {
+                    Some(true) => words.push(format!("--{}", flag::ENVMAP_COMPENSATION)),
+                    Some(false) => words.push(format!("--{}", flag::NO_ENVMAP_COMPENSATION)),
+                    None => {}
                 }
                 f.write_str(&words.join(" "))
             }
@@ -160,6 +163,7 @@ fn known_flags() -> String {
         .map(|(f, _)| format!("--{f}"))
         .collect();
     all.push(format!("--{}", flag::ENVMAP_COMPENSATION));
+    all.push(format!("--{}", flag::NO_ENVMAP_COMPENSATION));
     all.join(", ")
 }
 
@@ -229,7 +233,7 @@ impl FromStr for RenderPatch {
                 Some((n, v)) => (n, Some(v)),
                 None => (name, None),
             };
-            if name == flag::ENVMAP_COMPENSATION {
+            if name == flag::ENVMAP_COMPENSATION || name == flag::NO_ENVMAP_COMPENSATION {
                 if let Some(v) = inline {
                     return Err(SettingsError::bad(
                         name,
@@ -237,7 +241,7 @@ impl FromStr for RenderPatch {
                         "is a switch and takes no value",
                     ));
                 }
-                patch.envmap_compensation = Some(true);
+                patch.envmap_compensation = Some(name == flag::ENVMAP_COMPENSATION);
                 continue;
             }
             if !RenderPatch::VALUE_FLAGS.iter().any(|(f, _)| *f == name) {
@@ -273,6 +277,12 @@ mod tests {
         );
         assert_eq!(canonical.parse::<RenderPatch>().unwrap(), patch);
         assert_eq!("".parse::<RenderPatch>().unwrap(), RenderPatch::default());
+        // The opposite switch: the last one given wins, and it prints back.
+        let off: RenderPatch = "--envmap-compensation --no-envmap-compensation"
+            .parse()
+            .unwrap();
+        assert_eq!(off.envmap_compensation, Some(false));
+        assert_eq!(off.to_string(), "--no-envmap-compensation");
     }
 
     #[test]
@@ -300,6 +310,7 @@ mod tests {
             ("--no-such 3", "unknown flag `--no-such`"),
             ("--spp", "--spp needs a value"),
             ("--envmap-compensation=1", "--envmap-compensation 1"),
+            ("--no-envmap-compensation=1", "--no-envmap-compensation 1"),
             ("spp 3", "expected a flag"),
         ];
         for (text, words) in cases {

@@ -7,13 +7,18 @@
 //! wrap around in u, rows end at the poles — and radiance is interpolated bilinearly
 //! between texels (checked against Mitsuba 3.9's `envmap.eval`).
 //!
-//! Sampling (pbrt-v4 §12.5; Mitsuba 3 `envmap`): a piecewise-constant 2D distribution over
-//! the W×(H−1) cells between texels, each weighted by the exact mean of the bilinear
-//! luminance over the cell (the mean of its four corners) times the mean of sin θ over its
-//! row, so every direction with radiance has a positive density. A point (u, v) of density
-//! p(u, v) becomes a direction of density p(u, v)/(2π² sin θ) (Jacobian of the map).
+//! Sampling (pbrt-v4 §12.5; Mitsuba 3 `envmap`): one of the W×(H−1) cells between texels,
+//! each weighted by the exact mean of the bilinear luminance over the cell (the mean of
+//! its four corners) times the mean of sin θ over its row, then a point inside it ∝ that
+//! bilinear luminance (module `cells`), so every direction with radiance has a positive
+//! density and the density follows the radiance inside a cell too. A point (u, v) of
+//! density p(u, v) becomes a direction of density p(u, v)/(2π² sin θ) (Jacobian of the
+//! map).
 
+mod cells;
 mod sky;
+
+use cells::{CellDistribution, cell_weights};
 
 pub use sky::{SkyParameters, procedural_sky};
 
@@ -21,7 +26,6 @@ use glam::{Mat3, Vec2, Vec3};
 
 use crate::math::atan::atan2;
 use crate::math::{PI, Spectrum, floor, spectrum::luminance};
-use crate::sampling::distribution::PiecewiseConstant2D;
 use crate::sampling::sampler::ONE_MINUS_EPSILON;
 use crate::sampling::warp::{square_to_uniform_sphere, uniform_sphere_pdf};
 
@@ -42,10 +46,10 @@ enum Radiance {
     Map {
         image: LatLongImage,
         /// Boxed, so that the enum stays small (the `Constant` variant is a few bytes).
-        distribution: Box<PiecewiseConstant2D>,
+        distribution: Box<CellDistribution>,
         /// The MIS-compensated distribution (Karlík et al. 2019), if any cell keeps
         /// weight after the average is subtracted.
-        compensated: Option<PiecewiseConstant2D>,
+        compensated: Option<CellDistribution>,
     },
 }
 
@@ -83,26 +87,19 @@ fn direction_to_uv(w: Vec3) -> Vec2 {
 }
 
 impl LatLongImage {
-    /// Cell weights for MIS compensation: max(0, L̄_cell − L̄) × mean sin θ, with L̄ the
-    /// mean luminance over the sphere; `None` when no cell is above the mean.
-    fn compensated_weights(&self) -> Option<Vec<f32>> {
-        let rows = self.height - 1;
-        let dtheta = PI / rows as f32;
-        let (weights, _) = self.cell_weights();
-        // ∫L dω / 4π from the plain weights (mean luminance × mean sin θ per cell).
+    /// The luminance of every texel (clamped at 0), row-major: the sampling weights.
+    fn texel_luminance(&self) -> Vec<f32> {
+        self.texels.iter().map(|&t| luminance(t).max(0.0)).collect()
+    }
+
+    /// ∫ w dω over the sphere of the bilinear interpolant of texel weights `w`, by the
+    /// cells' weights (mean of the corners × mean sin θ of the row) times dθ dφ.
+    fn sphere_integral(&self, texel_weights: &[f32]) -> f32 {
+        let dtheta = PI / (self.height - 1) as f32;
         let dphi = 2.0 * PI / self.width as f32;
-        let integral: f64 = weights.iter().map(|&w| (w * dtheta * dphi) as f64).sum();
-        let mean = (integral / (4.0 * std::f64::consts::PI)) as f32;
-        let mut out = Vec::with_capacity(weights.len());
-        for j in 0..rows {
-            let (t0, t1) = (j as f32 * dtheta, (j + 1) as f32 * dtheta);
-            let mean_sin = (t0.cos() - t1.cos()) / dtheta;
-            for i in 0..self.width {
-                let cell_mean = weights[j * self.width + i] / mean_sin.max(f32::MIN_POSITIVE);
-                out.push((cell_mean - mean).max(0.0) * mean_sin);
-            }
-        }
-        out.iter().any(|&w| w > 0.0).then_some(out)
+        let cells = cell_weights(texel_weights, self.width, self.height);
+        let sum: f64 = cells.iter().map(|&w| (w * dtheta * dphi) as f64).sum();
+        sum as f32
     }
 
     /// An image of `width × height` texels; negative and non-finite values are an error.
@@ -142,18 +139,39 @@ impl LatLongImage {
         self.texels[j * self.width + i % self.width]
     }
 
-    /// Bilinear radiance at (u, v) between texels at ((i + ½)/W, j/(H−1)).
+    /// The cell between texels that holds (u, v), and where in it: texel (i, j) is its
+    /// corner at (0, 0), (i + 1 mod W, j + 1) the one at (1, 1).
     #[inline]
-    pub fn lookup(&self, uv: Vec2) -> Spectrum {
+    fn locate(&self, uv: Vec2) -> TexelCell {
         let x = uv.x * self.width as f32 - 0.5;
         let y = (uv.y * (self.height - 1) as f32).clamp(0.0, (self.height - 1) as f32);
         let x0 = floor(x);
         let i = (x0 as isize).rem_euclid(self.width as isize) as usize;
         let j = (floor(y) as usize).min(self.height - 2);
-        let (fx, fy) = (x - x0, y - j as f32);
-        let top = self.texel(i, j) * (1.0 - fx) + self.texel(i + 1, j) * fx;
-        let bottom = self.texel(i, j + 1) * (1.0 - fx) + self.texel(i + 1, j + 1) * fx;
-        top * (1.0 - fy) + bottom * fy
+        TexelCell {
+            i,
+            j,
+            f: Vec2::new(x - x0, y - j as f32),
+        }
+    }
+
+    /// The four texels at the corners of `cell`: `[t00, t10, t01, t11]`.
+    #[inline]
+    fn corners(&self, cell: &TexelCell) -> [Spectrum; 4] {
+        let (i, j) = (cell.i, cell.j);
+        [
+            self.texel(i, j),
+            self.texel(i + 1, j),
+            self.texel(i, j + 1),
+            self.texel(i + 1, j + 1),
+        ]
+    }
+
+    /// Bilinear radiance at (u, v) between texels at ((i + ½)/W, j/(H−1)).
+    #[inline]
+    pub fn lookup(&self, uv: Vec2) -> Spectrum {
+        let cell = self.locate(uv);
+        bilerp(&self.corners(&cell), cell.f)
     }
 
     /// Half a texel in u: cell i of the sampling grid spans u ∈ [(i + ½)/W, (i + 3/2)/W).
@@ -161,31 +179,34 @@ impl LatLongImage {
     fn half_texel(&self) -> f32 {
         0.5 / self.width as f32
     }
+}
 
-    /// Sampling weights of the W×(H−1) cells: mean luminance over the cell times the
-    /// mean of sin θ over its row; and ∫ L dω (luminance) over the sphere.
-    fn cell_weights(&self) -> (Vec<f32>, f32) {
-        let rows = self.height - 1;
-        let dtheta = PI / rows as f32;
-        let dphi = 2.0 * PI / self.width as f32;
-        let mut weights = Vec::with_capacity(self.width * rows);
-        let mut integral = 0.0f64;
-        for j in 0..rows {
-            let (t0, t1) = (j as f32 * dtheta, (j + 1) as f32 * dtheta);
-            let mean_sin = (t0.cos() - t1.cos()) / dtheta;
-            for i in 0..self.width {
-                let corners = self.texel(i, j)
-                    + self.texel(i + 1, j)
-                    + self.texel(i, j + 1)
-                    + self.texel(i + 1, j + 1);
-                let mean_l = 0.25 * luminance(corners).max(0.0);
-                let w = mean_l * mean_sin;
-                weights.push(w);
-                integral += (w * dtheta * dphi) as f64;
-            }
+/// A cell of the grid between texels (column i, row j of W × (H − 1)) and a point in it,
+/// `f` ∈ [0, 1]² from its corner at texel (i, j).
+#[derive(Clone, Copy, Debug)]
+struct TexelCell {
+    i: usize,
+    j: usize,
+    f: Vec2,
+}
+
+impl TexelCell {
+    /// Cell (i, j), at its corner.
+    fn new(i: usize, j: usize) -> TexelCell {
+        TexelCell {
+            i,
+            j,
+            f: Vec2::ZERO,
         }
-        (weights, integral as f32)
     }
+}
+
+/// The bilinear interpolation of corner values `[t00, t10, t01, t11]` at `f`.
+#[inline]
+fn bilerp(t: &[Spectrum; 4], f: Vec2) -> Spectrum {
+    let top = t[0] * (1.0 - f.x) + t[1] * f.x;
+    let bottom = t[2] * (1.0 - f.x) + t[3] * f.x;
+    top * (1.0 - f.y) + bottom * f.y
 }
 
 impl Environment {
@@ -212,14 +233,17 @@ impl Environment {
         }
         let rotation = orthonormalize(to_world)
             .ok_or_else(|| "environment to_world has no rotation part (degenerate)".to_string())?;
-        let rows = image.height - 1;
-        let (weights, integral) = image.cell_weights();
-        let distribution = PiecewiseConstant2D::new(&weights, image.width, rows)
+        let luminance = image.texel_luminance();
+        let integral = image.sphere_integral(&luminance);
+        // Compensation (Karlík et al. 2019): max(0, L − L̄) with L̄ = ∫L dω / 4π.
+        let mean = integral / (4.0 * PI);
+        let above: Vec<f32> = luminance.iter().map(|&l| (l - mean).max(0.0)).collect();
+        let compensated = (image.sphere_integral(&above) > 0.0)
+            .then(|| CellDistribution::new(&luminance, mean, image.width, image.height).ok())
+            .flatten();
+        let distribution = CellDistribution::new(&luminance, 0.0, image.width, image.height)
             .map_err(|e| format!("environment sampling distribution: {e:?}"))?
             .into();
-        let compensated = image
-            .compensated_weights()
-            .and_then(|w| PiecewiseConstant2D::new(&w, image.width, rows).ok());
         Ok(Environment {
             radiance: Radiance::Map {
                 image,
@@ -256,7 +280,7 @@ impl Environment {
                 Some((w, *l * self.scale, pdf))
             }
             Radiance::Map { image, .. } => {
-                let (cell, pdf_uv) = self.distribution(compensate)?.sample(u);
+                let (cell, pdf_uv) = self.distribution(compensate)?.sample(u, image);
                 let x = cell.x + image.half_texel();
                 let uv = Vec2::new(x - floor(x), cell.y);
                 let (local, sin_t) = uv_to_direction(uv);
@@ -281,18 +305,27 @@ impl Environment {
         match &self.radiance {
             Radiance::Constant(l) => (*l * self.scale, uniform_sphere_pdf(w)),
             Radiance::Map { image, .. } => {
+                // The radiance and the density read the same four texels.
                 let local = self.to_local * w;
-                let uv = direction_to_uv(local);
-                let radiance = image.lookup(uv) * self.scale;
-                (radiance, self.map_pdf(image, local, uv, compensate))
+                let cell = image.locate(direction_to_uv(local));
+                let texels = image.corners(&cell);
+                let radiance = bilerp(&texels, cell.f) * self.scale;
+                (radiance, self.map_pdf(local, &cell, &texels, compensate))
             }
         }
     }
 
-    /// The map's solid-angle density of the direction `local` (emitter frame) whose image
-    /// coordinates are `uv`: the cell's density over the lat-long Jacobian 2π² sin θ.
+    /// The map's solid-angle density of the direction `local` (emitter frame), which lies
+    /// in `cell` with corner texels `texels`: the cell grid's density over the lat-long
+    /// Jacobian 2π² sin θ.
     #[inline]
-    fn map_pdf(&self, image: &LatLongImage, local: Vec3, uv: Vec2, compensate: bool) -> f32 {
+    fn map_pdf(
+        &self,
+        local: Vec3,
+        cell: &TexelCell,
+        texels: &[Spectrum; 4],
+        compensate: bool,
+    ) -> f32 {
         let Some(distribution) = self.distribution(compensate) else {
             return 0.0;
         };
@@ -301,9 +334,7 @@ impl Environment {
         if sin_t <= 0.0 {
             return 0.0;
         }
-        let x = uv.x - image.half_texel();
-        let cell = Vec2::new(x - floor(x), uv.y);
-        distribution.pdf(cell) / (2.0 * PI * PI * sin_t)
+        distribution.pdf(cell, texels) / (2.0 * PI * PI * sin_t)
     }
 
     /// Solid-angle density of [`Environment::sample`] choosing world direction `w`.
@@ -313,7 +344,8 @@ impl Environment {
             Radiance::Constant(_) => uniform_sphere_pdf(w),
             Radiance::Map { image, .. } => {
                 let local = self.to_local * w;
-                self.map_pdf(image, local, direction_to_uv(local), compensate)
+                let cell = image.locate(direction_to_uv(local));
+                self.map_pdf(local, &cell, &image.corners(&cell), compensate)
             }
         }
     }
@@ -336,7 +368,7 @@ impl Environment {
 
     /// The distribution in use: the compensated one when asked for and present.
     #[inline]
-    fn distribution(&self, compensate: bool) -> Option<&PiecewiseConstant2D> {
+    fn distribution(&self, compensate: bool) -> Option<&CellDistribution> {
         match &self.radiance {
             Radiance::Constant(_) => None,
             Radiance::Map {

@@ -55,6 +55,27 @@ impl PiecewiseConstant2D {
         (Vec2::new(x, y), pdf_x * pdf_y)
     }
 
+    /// The cell that [`PiecewiseConstant2D::sample`] would place its point in, by the same
+    /// inversion: its (column, row), its probability, and u rescaled to [0, 1)² within
+    /// the chosen CDF intervals, so the two numbers can place a point inside the cell by
+    /// any other density (the lecture's one number reused for two choices).
+    #[inline]
+    pub fn sample_cell(&self, u: Vec2) -> ((usize, usize), f32, Vec2) {
+        let (row, pmf_y, uy) = self.marginal.sample_discrete(u.y);
+        let (column, pmf_x, ux) = self.conditionals[row].sample_discrete(u.x);
+        ((column, row), pmf_x * pmf_y, Vec2::new(ux, uy))
+    }
+
+    /// The probability of cell (`column`, `row`) under [`PiecewiseConstant2D::sample_cell`];
+    /// 0 outside the table.
+    #[inline]
+    pub fn cell_pmf(&self, column: usize, row: usize) -> f32 {
+        match self.conditionals.get(row) {
+            Some(c) => self.marginal.pmf(row) * c.pmf(column),
+            None => 0.0,
+        }
+    }
+
     /// Density at p per unit area of [0, 1)²; 0 outside.
     pub fn pdf(&self, p: Vec2) -> f32 {
         if !(0.0..1.0).contains(&p.y) {
@@ -92,7 +113,20 @@ mod tests {
             assert!((d.to_square(p) - u).length() < 1e-4);
         }
         assert!(PiecewiseConstant2D::new(&weights, 2, 3).is_err());
+        // The discrete choice: the same cell as the continuous point, its pmf, and the
+        // reused numbers place the point back where `sample` put it.
+        for k in 0..200 {
+            let u = Vec2::new((k as f32 * 0.618_034).fract(), (k as f32 + 0.5) / 200.0);
+            let ((i, j), pmf, reused) = d.sample_cell(u);
+            let (p, pdf) = d.sample(u);
+            assert_eq!((i, j), ((p.x * 3.0) as usize, (p.y * 3.0) as usize), "{u}");
+            assert!((pmf * 9.0 - pdf).abs() < 1e-5 && d.cell_pmf(i, j) == pmf);
+            let back = Vec2::new(i as f32 + reused.x, j as f32 + reused.y) / 3.0;
+            assert!((back - p).length() < 1e-5, "{back} {p}");
+        }
+        assert_eq!(d.cell_pmf(0, 3), 0.0);
         let zero = PiecewiseConstant2D::new(&[0.0; 4], 2, 2).expect("uniform fallback");
+        assert_eq!(zero.sample_cell(Vec2::splat(0.75)).1, 0.25);
         assert_eq!(zero.sample(Vec2::splat(0.25)), (Vec2::splat(0.25), 1.0));
     }
 }

@@ -20,16 +20,8 @@ fn square_to_linear(u: f32, a: f32, b: f32) -> f32 {
     x.min(ONE_MINUS_EPSILON)
 }
 
-/// Density of [`square_to_linear`]: 2·((1 − x)·a + x·b)/(a + b).
-#[inline]
-fn linear_pdf(x: f32, a: f32, b: f32) -> f32 {
-    if !(0.0..=1.0).contains(&x) || a + b <= 0.0 {
-        return 0.0;
-    }
-    2.0 * ((1.0 - x) * a + x * b) / (a + b)
-}
-
-/// The CDF of [`linear_pdf`]: x·((2 − x)·a + x·b)/(a + b), the inverse of [`square_to_linear`].
+/// The CDF of the density 2·((1 − x)·a + x·b)/(a + b): x·((2 − x)·a + x·b)/(a + b), the
+/// inverse of [`square_to_linear`].
 #[inline]
 fn linear_to_square(x: f32, a: f32, b: f32) -> f32 {
     if a + b <= 0.0 {
@@ -59,10 +51,15 @@ pub fn square_to_bilinear(u: Vec2, w: [f32; 4]) -> (Vec2, f32) {
 
 /// Density per unit area of [`square_to_bilinear`], 4·bilinear(p)/(w00 + w10 + w01 + w11):
 /// the marginal density of y times the conditional density of x.
+/// (The product of the two linear densities collapses to this: the conditional's
+/// normalisation is the marginal's numerator. One division instead of two.)
 #[inline]
 pub fn bilinear_pdf(p: Vec2, w: [f32; 4]) -> f32 {
-    linear_pdf(p.y, w[0] + w[1], w[2] + w[3])
-        * linear_pdf(p.x, lerp(p.y, w[0], w[2]), lerp(p.y, w[1], w[3]))
+    let sum = w[0] + w[1] + w[2] + w[3];
+    if !(0.0..=1.0).contains(&p.x) || !(0.0..=1.0).contains(&p.y) || sum <= 0.0 {
+        return 0.0;
+    }
+    4.0 * lerp(p.y, lerp(p.x, w[0], w[1]), lerp(p.x, w[2], w[3])) / sum
 }
 
 /// The inverse of [`square_to_bilinear`]: the uniform point that maps to `p`.
