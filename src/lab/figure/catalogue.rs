@@ -200,7 +200,8 @@ pub const FIGURES: &[Figure] = &[
             strategies: &[
                 ("light", "--estimator light"),
                 ("BRDF", "--estimator bsdf"),
-                ("MIS", "--estimator mis"),
+                ("MIS", "--estimator mis --no-envmap-compensation"),
+                ("MIS, compensated", "--estimator mis"),
             ],
             spp: 16,
             reference: "--estimator mis",
@@ -227,7 +228,7 @@ pub const FIGURES: &[Figure] = &[
     },
     Figure {
         name: "envmap",
-        description: "environment lighting: cosine vs BRDF vs environment-map sampling vs MIS",
+        description: "environment lighting: cosine vs BRDF vs environment-map sampling vs MIS with the map sampled ∝ L and with MIS compensation (∝ max(0, L − mean L), Karlík et al. 2019, the default)",
         kind: FigureKind::Panels(&[Panel {
             title: "envmap",
             scene: "builtin:envmap",
@@ -235,7 +236,8 @@ pub const FIGURES: &[Figure] = &[
                 ("cosine", "--estimator cosine"),
                 ("BRDF", "--estimator bsdf"),
                 ("light (envmap)", "--estimator light"),
-                ("MIS", "--estimator mis"),
+                ("MIS", "--estimator mis --no-envmap-compensation"),
+                ("MIS, compensated", "--estimator mis"),
             ],
             spp: 16,
             reference: "--estimator mis",
