@@ -148,7 +148,8 @@ fn samples_carry_the_pdf_and_radiance_of_their_direction() {
             assert!(pdf > 0.0 && l.max_element() > 0.0 || name == "envmap-one-bright-texel");
         }
         // Every direction with radiance has a positive density (not so under MIS
-        // compensation, which zeroes the directions dimmer than the mean by design).
+        // compensation, which zeroes the directions whose four nearest texels are all
+        // at or below the mean, by design).
         if compensate {
             continue;
         }
@@ -164,6 +165,48 @@ fn samples_carry_the_pdf_and_radiance_of_their_direction() {
                     "{name}: radiance but zero pdf at {w}"
                 );
             }
+        }
+    }
+}
+
+/// The plain density follows the radiance the map is evaluated with: inside one row of
+/// cells, pdf · sin θ / luminance is the same for every direction (the cells' bilinear
+/// interpolation of luminance, times the row's mean sin θ). A density constant over each
+/// cell, or one interpolated from the wrong corners, varies with the texels' contrast.
+#[test]
+fn density_follows_the_bilinear_radiance_within_a_row() {
+    use lightlab::math::spectrum::luminance;
+    let maps = [
+        (
+            "random-8x5",
+            LatLongImage::new(8, 5, random_texels(17)).expect("image"),
+        ),
+        ("procedural-sky", small_sky()),
+    ];
+    for (name, img) in maps {
+        let rows = img.height - 1;
+        let env = Environment::from_image(img, 1.0, Mat3::IDENTITY).expect("environment");
+        let mut rng = Rng32::new(SEED);
+        for j in 0..rows {
+            let (mut lo, mut hi) = (f32::INFINITY, 0.0f32);
+            for _ in 0..200 {
+                // Image coordinates inside row j, away from its edges.
+                let u = rng.next_1d();
+                let v = (j as f32 + 0.02 + 0.96 * rng.next_1d()) / rows as f32;
+                let (st, ct) = (std::f32::consts::PI * v).sin_cos();
+                let (sp, cp) = (std::f32::consts::TAU * u).sin_cos();
+                let w = Vec3::new(st * sp, ct, -st * cp);
+                let l = luminance(env.eval(w));
+                if l < 1e-3 {
+                    continue;
+                }
+                let ratio = env.pdf(w, false) * st / l;
+                (lo, hi) = (lo.min(ratio), hi.max(ratio));
+            }
+            assert!(
+                hi <= lo * 1.002,
+                "{name}, row {j}: pdf·sinθ/L from {lo} to {hi}"
+            );
         }
     }
 }

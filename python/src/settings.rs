@@ -5,8 +5,10 @@ use lightlab::settings::{Pass, RenderPatch};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
-/// The switch that takes no value on the command line.
+/// The switches that take no value on the command line: compensation on and off, both
+/// the keyword `envmap_compensation` (True or False) in Python.
 const ENVMAP_COMPENSATION: &str = "envmap-compensation";
+const NO_ENVMAP_COMPENSATION: &str = "no-envmap-compensation";
 
 /// The keywords a render accepts: every value flag (`pass` as `pass_index` and
 /// `pass_count`) and the envmap-compensation switch, in canonical order.
@@ -60,8 +62,9 @@ pub fn keywords_of(patch: &RenderPatch) -> Vec<(String, String)> {
     let mut words = text.split_whitespace();
     while let Some(word) = words.next() {
         let name = word.trim_start_matches('-');
-        if name == ENVMAP_COMPENSATION {
-            pairs.push((name.replace('-', "_"), "True".to_string()));
+        if name == ENVMAP_COMPENSATION || name == NO_ENVMAP_COMPENSATION {
+            let on = if name == ENVMAP_COMPENSATION { "True" } else { "False" };
+            pairs.push((ENVMAP_COMPENSATION.replace('-', "_"), on.to_string()));
         } else if let Some(value) = words.next() {
             pairs.push((name.replace('-', "_"), value.to_string()));
         }

@@ -137,3 +137,11 @@ def test_merge_refuses_the_same_samples_twice():
         lightlab.merge([part, third])
     other_seed = lightlab.render("builtin:assignment", **dict(SMALL, seed=7))
     assert lightlab.merge([part, other_seed]).spp == 6
+
+
+def test_strategy_settings_keep_both_compensation_switches():
+    from lightlab._lightlab import strategy_settings
+    assert strategy_settings("plain:--estimator mis --no-envmap-compensation") == (
+        "plain", [("estimator", "mis"), ("envmap_compensation", "False")])
+    assert strategy_settings("comp:--envmap-compensation") == (
+        "comp", [("envmap_compensation", "True")])

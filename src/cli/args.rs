@@ -44,8 +44,8 @@ fn augment(cmd: Command, names: &[&'static str], switch: bool) -> Command {
                 .long(flag::ENVMAP_COMPENSATION)
                 .help(
                     "MIS compensation of environment-map sampling (Karlík et al. 2019): sample \
-                     ∝ max(0, L − mean L). Unbiased only with --estimator mis, so required with it \
-                     (the default with mis).",
+                     ∝ max(0, L − mean L). The default with --estimator mis; an error with the \
+                     other estimators, for which it would be biased.",
                 )
                 .action(ArgAction::SetTrue)
                 .overrides_with(flag::NO_ENVMAP_COMPENSATION),
@@ -178,6 +178,10 @@ mod tests {
             "--estimator light --light-sampling area --spp 16",
             "--mis balance --light-samples 2 --bsdf-samples 3 --envmap-compensation",
             "--sampler stratified --seed 9 --width 64 --height 32 --pass 2/8 --light-select power",
+            "--estimator mis --no-envmap-compensation",
+            // The later of the two switches wins, as with the patch parser.
+            "--no-envmap-compensation --envmap-compensation",
+            "--envmap-compensation --no-envmap-compensation",
         ] {
             let words: Vec<&str> = text.split_whitespace().collect();
             let cli = Both::try_parse_from(&words).unwrap().all.0;

@@ -194,10 +194,11 @@ impl RenderSettings {
             width: self.resolution.map(|r| r.0),
             height: self.resolution.map(|r| r.1),
             pass: (self.pass != Pass::WHOLE).then_some(self.pass),
-            // Unset where it is what the estimator implies (on with `mis`, off otherwise).
-            envmap_compensation: (self.envmap_compensation
-                != (self.estimator == EstimatorKind::Mis))
-                .then_some(self.envmap_compensation),
+            // The value in effect (only `mis` uses it), unset where it is what the
+            // estimator implies: on with `mis`, off otherwise.
+            envmap_compensation: (self.estimator == EstimatorKind::Mis
+                && !self.envmap_compensation)
+                .then_some(false),
             horizon_rejection: (!self.horizon_rejection).then_some(Switch::Off),
             fast_paths: (!self.fast_paths).then_some(Switch::Off),
         }
@@ -263,6 +264,23 @@ mod tests {
         assert!(with("") && with("--estimator mis") && with("--envmap-compensation"));
         assert!(!with("--no-envmap-compensation") && !with("--estimator light"));
         assert!(!with("--estimator bsdf --no-envmap-compensation"));
+        // Layers: a later estimator decides the default; an explicit switch stays.
+        let layered = |below: &str, above: &str| {
+            let (b, a): (RenderPatch, RenderPatch) =
+                (below.parse().unwrap(), above.parse().unwrap());
+            RenderSettings::build(&scene, &[&b, &a])
+                .unwrap()
+                .envmap_compensation
+        };
+        assert!(!layered("--no-envmap-compensation", "--estimator mis"));
+        assert!(layered("--estimator light", "--estimator mis"));
+        assert!(!layered("--estimator mis", "--estimator light"));
+        // Set directly on settings whose estimator does not use it: the patch says what
+        // is in effect, and builds again.
+        let mut s = RenderSettings::for_scene(&scene);
+        s.estimator = EstimatorKind::Light;
+        assert!(s.envmap_compensation);
+        assert!(RenderSettings::build(&scene, &[&s.patch()]).is_ok());
         let e = bad("--ris-spatial 4");
         assert!(e.contains("--ris-spatial") && e.contains("bvh"), "{e}");
         let e = bad("--ris-spatial 4 --light-select ris --estimator cosine");

@@ -200,8 +200,7 @@ pub const FIGURES: &[Figure] = &[
             strategies: &[
                 ("light", "--estimator light"),
                 ("BRDF", "--estimator bsdf"),
-                ("MIS", "--estimator mis --no-envmap-compensation"),
-                ("MIS, compensated", "--estimator mis"),
+                ("MIS", "--estimator mis"),
             ],
             spp: 16,
             reference: "--estimator mis",
@@ -237,7 +236,7 @@ pub const FIGURES: &[Figure] = &[
                 ("BRDF", "--estimator bsdf"),
                 ("light (envmap)", "--estimator light"),
                 ("MIS", "--estimator mis --no-envmap-compensation"),
-                ("MIS, compensated", "--estimator mis"),
+                ("MIS, compensated", "--estimator mis --envmap-compensation"),
             ],
             spp: 16,
             reference: "--estimator mis",

@@ -2,12 +2,12 @@
 //! proportion to the integral of its bilinear weight (times the mean of sin θ over its
 //! row), then the point inside it is drawn ∝ the bilinear interpolation of the weights at
 //! its four corner texels (the bilinear warp of Hart et al. 2020, as pbrt-v4's
-//! `SampleBilinear`), so the
-//! density follows the bilinearly interpolated radiance the map is evaluated with instead
-//! of being constant over each cell. Mitsuba 3's `envmap` samples the same interpolant
-//! (its `Hierarchical2D` warp); a piecewise-constant density over cells leaves the ratio
-//! radiance/density varying by the texel contrast inside every cell, which on a small map
-//! with a sun a few texels wide is most of the light estimator's variance.
+//! `SampleBilinear`). So the density follows, up to sin θ's variation within a row, the
+//! bilinearly interpolated radiance the map is evaluated with, instead of being constant
+//! over each cell: a piecewise-constant density leaves the ratio radiance/density varying
+//! by the texel contrast inside every cell, which on a small map with a sun a few texels
+//! wide is most of the light estimator's variance. Mitsuba 3's `envmap` also samples a
+//! bilinear interpolant (its `Hierarchical2D` warp), of luminance × sin θ per texel.
 //!
 //! Coordinates are the cell grid's: x ∈ [0, 1) over the W cells of a row (cell i lies
 //! between texel columns i and i + 1, wrapping), y ∈ [0, 1) over the H − 1 rows of cells.
@@ -22,13 +22,15 @@ use crate::sampling::warp::{bilinear_pdf, square_to_bilinear};
 
 /// Cells chosen ∝ their weight, points inside ∝ the bilinear corner weights. A texel's
 /// weight is max(0, luminance − `offset`): the luminance itself for the plain
-/// distribution, its excess over the mean for the MIS-compensated one. The weights are
-/// computed from the texels where they are needed (the four a lookup reads anyway), not
-/// stored.
+/// distribution, its excess over the mean for the MIS-compensated one, scaled so that the
+/// largest is 1 (the bilinear warp squares its weights: a sun of luminance 10²⁰ would
+/// overflow). The weights are computed from the texels where they are needed (the four a
+/// lookup reads anyway), not stored.
 #[derive(Clone, Debug)]
 pub(super) struct CellDistribution {
     cells: PiecewiseConstant2D,
     offset: f32,
+    scale: f32,
     width: usize,
     rows: usize,
 }
@@ -41,12 +43,24 @@ impl CellDistribution {
         width: usize,
         height: usize,
     ) -> Result<Self, DistributionError> {
-        let texels: Vec<f32> = luminance.iter().map(|&l| weight(l, offset)).collect();
+        let largest = luminance
+            .iter()
+            .fold(0.0f32, |m, &l| m.max(weight(l, offset, 1.0)));
+        let scale = if largest.is_normal() {
+            1.0 / largest
+        } else {
+            1.0
+        };
+        let texels: Vec<f32> = luminance
+            .iter()
+            .map(|&l| weight(l, offset, scale))
+            .collect();
         let rows = height - 1;
         let cells = PiecewiseConstant2D::new(&cell_weights(&texels, width, height), width, rows)?;
         Ok(CellDistribution {
             cells,
             offset,
+            scale,
             width,
             rows,
         })
@@ -57,7 +71,7 @@ impl CellDistribution {
     /// uniform fallback).
     #[inline]
     fn corner_weights(&self, texels: &[Spectrum; 4]) -> [f32; 4] {
-        let w = texels.map(|t| weight(luminance(t), self.offset));
+        let w = texels.map(|t| weight(luminance(t), self.offset, self.scale));
         if w.iter().sum::<f32>() > 0.0 {
             w
         } else {
@@ -91,10 +105,10 @@ impl CellDistribution {
     }
 }
 
-/// A texel's sampling weight: max(0, max(0, luminance) − offset).
+/// A texel's sampling weight: max(0, max(0, luminance) − offset) · scale.
 #[inline]
-fn weight(luminance: f32, offset: f32) -> f32 {
-    (luminance.max(0.0) - offset).max(0.0)
+fn weight(luminance: f32, offset: f32, scale: f32) -> f32 {
+    (luminance.max(0.0) - offset).max(0.0) * scale
 }
 
 /// The weights of the W×(H − 1) cells of W×H texel weights: the mean of the cell's four

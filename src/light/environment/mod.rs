@@ -47,7 +47,7 @@ enum Radiance {
         image: LatLongImage,
         /// Boxed, so that the enum stays small (the `Constant` variant is a few bytes).
         distribution: Box<CellDistribution>,
-        /// The MIS-compensated distribution (Karlík et al. 2019), if any cell keeps
+        /// The MIS-compensated distribution (Karlík et al. 2019), if any texel keeps
         /// weight after the average is subtracted.
         compensated: Option<CellDistribution>,
     },
@@ -235,15 +235,18 @@ impl Environment {
             .ok_or_else(|| "environment to_world has no rotation part (degenerate)".to_string())?;
         let luminance = image.texel_luminance();
         let integral = image.sphere_integral(&luminance);
-        // Compensation (Karlík et al. 2019): max(0, L − L̄) with L̄ = ∫L dω / 4π.
-        let mean = integral / (4.0 * PI);
-        let above: Vec<f32> = luminance.iter().map(|&l| (l - mean).max(0.0)).collect();
-        let compensated = (image.sphere_integral(&above) > 0.0)
-            .then(|| CellDistribution::new(&luminance, mean, image.width, image.height).ok())
-            .flatten();
-        let distribution = CellDistribution::new(&luminance, 0.0, image.width, image.height)
-            .map_err(|e| format!("environment sampling distribution: {e:?}"))?
+        let (w, h) = (image.width, image.height);
+        let bad = |e| format!("environment sampling distribution: {e:?}");
+        let distribution = CellDistribution::new(&luminance, 0.0, w, h)
+            .map_err(bad)?
             .into();
+        // Compensation (Karlík et al. 2019): texel weights max(0, L − L̄) with
+        // L̄ = ∫L dω / 4π, where some texel is above the mean.
+        let mean = integral / (4.0 * PI);
+        let compensated = match luminance.iter().any(|&l| l > mean) {
+            true => Some(CellDistribution::new(&luminance, mean, w, h).map_err(bad)?),
+            false => None,
+        };
         Ok(Environment {
             radiance: Radiance::Map {
                 image,
@@ -352,10 +355,11 @@ impl Environment {
 
     /// Whether the map has an MIS-compensated distribution (Karlík, Šik, Vévoda, Skřivan &
     /// Křivánek 2019, "MIS Compensation: Optimizing Sampling Techniques in Multiple
-    /// Importance Sampling"): ∝ max(0, L − L̄) instead of ∝ L, where L̄ is the mean radiance
-    /// over the sphere. Directions dimmer than the mean get density zero under it, so it is
-    /// only unbiased inside MIS, whose BSDF strategy covers them. A map with no texel above
-    /// its mean (a constant) has none and keeps its plain distribution.
+    /// Importance Sampling"): texel weights max(0, L − L̄) instead of L, interpolated
+    /// bilinearly as the plain ones are, where L̄ is the mean radiance over the sphere.
+    /// Directions whose four nearest texels are all at or below the mean get density zero
+    /// under it, so it is only unbiased inside MIS, whose BSDF strategy covers them. A map
+    /// with no texel above its mean (a constant) has none and keeps its plain distribution.
     pub fn has_compensation(&self) -> bool {
         matches!(
             &self.radiance,
@@ -405,77 +409,4 @@ fn orthonormalize(m: Mat3) -> Option<Mat3> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn uv_and_direction_are_inverse() {
-        for (u, v) in [(0.1, 0.2), (0.6, 0.5), (0.95, 0.9), (0.5, 0.01)] {
-            let (w, _) = uv_to_direction(Vec2::new(u, v));
-            let back = direction_to_uv(w);
-            assert!(
-                (back - Vec2::new(u, v)).abs().max_element() < 1e-5,
-                "{u} {v}: {back}"
-            );
-        }
-        // Mitsuba's convention: u = 0 looks down −z, +y is up.
-        assert!((uv_to_direction(Vec2::new(0.0, 0.5)).0 - Vec3::NEG_Z).length() < 1e-6);
-        assert!((uv_to_direction(Vec2::new(0.0, 0.0)).0 - Vec3::Y).length() < 1e-6);
-    }
-
-    #[test]
-    fn bilinear_lookup_hits_texels_and_wraps() {
-        let texels = (0..8).map(|i| Spectrum::splat(i as f32)).collect();
-        let img = LatLongImage::new(4, 2, texels).expect("image");
-        assert_eq!(img.lookup(Vec2::new(0.375, 0.0)), Spectrum::splat(1.0));
-        assert_eq!(img.lookup(Vec2::new(0.625, 1.0)), Spectrum::splat(6.0));
-        // Between the last column (3) and the first (0) of the top row, on either side
-        // of u = 0.
-        assert_eq!(img.lookup(Vec2::new(0.0, 0.0)), Spectrum::splat(1.5));
-        let near_one = img.lookup(Vec2::new(0.99, 0.0)).x;
-        assert!((near_one - 3.0 * (1.0 - 0.46)).abs() < 1e-4, "{near_one}");
-    }
-
-    #[test]
-    fn bad_images_are_errors() {
-        assert!(LatLongImage::new(2, 2, vec![Spectrum::ONE; 3]).is_err());
-        let mut t = vec![Spectrum::ONE; 4];
-        t[2] = Spectrum::splat(f32::NAN);
-        assert!(LatLongImage::new(2, 2, t).is_err());
-        let img = LatLongImage::new(2, 2, vec![Spectrum::ONE; 4]).expect("image");
-        assert!(Environment::from_image(img.clone(), -1.0, Mat3::IDENTITY).is_err());
-        assert!(Environment::from_image(img, 1.0, Mat3::ZERO).is_err());
-    }
-
-    #[test]
-    fn eval_pdf_is_eval_and_pdf_bit_for_bit() {
-        // A map with a bright spot (so the compensated distribution exists), rotated.
-        let (w, h) = (16, 9);
-        let texels = (0..w * h)
-            .map(|k| Spectrum::splat(if k == 40 { 50.0 } else { 0.5 + (k % 7) as f32 }))
-            .collect();
-        let img = LatLongImage::new(w, h, texels).expect("image");
-        let rotation = Mat3::from_rotation_y(0.7) * Mat3::from_rotation_x(-0.3);
-        let env = Environment::from_image(img, 2.0, rotation).expect("environment");
-        assert!(env.has_compensation());
-        let mut checked = 0;
-        for i in 0..2000 {
-            let u = Vec2::new((i as f32 * 0.618_034).fract(), (i as f32 + 0.5) / 2000.0);
-            let (dir, _) = uv_to_direction(u);
-            for d in [dir, Vec3::Y, Vec3::NEG_Y] {
-                for compensate in [false, true] {
-                    let (l, pdf) = env.eval_pdf(d, compensate);
-                    assert_eq!(l, env.eval(d), "{d}");
-                    assert_eq!(pdf.to_bits(), env.pdf(d, compensate).to_bits(), "{d}");
-                    checked += (pdf > 0.0) as u32;
-                }
-            }
-        }
-        assert!(checked > 2000, "{checked}");
-        let constant = Environment::constant(Spectrum::ONE);
-        assert_eq!(
-            constant.eval_pdf(Vec3::X, false),
-            (constant.eval(Vec3::X), constant.pdf(Vec3::X, false))
-        );
-    }
-}
+mod tests;
