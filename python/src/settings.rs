@@ -63,7 +63,11 @@ pub fn keywords_of(patch: &RenderPatch) -> Vec<(String, String)> {
     while let Some(word) = words.next() {
         let name = word.trim_start_matches('-');
         if name == ENVMAP_COMPENSATION || name == NO_ENVMAP_COMPENSATION {
-            let on = if name == ENVMAP_COMPENSATION { "True" } else { "False" };
+            let on = if name == ENVMAP_COMPENSATION {
+                "True"
+            } else {
+                "False"
+            };
             pairs.push((ENVMAP_COMPENSATION.replace('-', "_"), on.to_string()));
         } else if let Some(value) = words.next() {
             pairs.push((name.replace('-', "_"), value.to_string()));
