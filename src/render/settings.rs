@@ -73,8 +73,9 @@ impl RenderSettings {
             .fold(scene.requested.clone(), |acc, layer| acc.then(layer));
         p.validate()?;
         let defaults = MisSettings::default();
+        let estimator = p.estimator.unwrap_or(EstimatorKind::Mis);
         let s = RenderSettings {
-            estimator: p.estimator.unwrap_or(EstimatorKind::Mis),
+            estimator,
             mis: MisSettings {
                 heuristic: p.mis.unwrap_or(defaults.heuristic),
                 light_samples: p.light_samples.unwrap_or(defaults.light_samples),
@@ -94,7 +95,7 @@ impl RenderSettings {
             filter: scene.filter,
             envmap_compensation: p
                 .envmap_compensation
-                .unwrap_or(p.estimator.unwrap_or(EstimatorKind::Mis) == EstimatorKind::Mis),
+                .unwrap_or(estimator == EstimatorKind::Mis),
             horizon_rejection: p.horizon_rejection != Some(Switch::Off),
             fast_paths: p.fast_paths != Some(Switch::Off),
         };

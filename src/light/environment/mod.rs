@@ -283,11 +283,11 @@ impl Environment {
                 Some((w, *l * self.scale, pdf))
             }
             Radiance::Map { image, .. } => {
-                let (cell, pdf_uv) = self.distribution(compensate)?.sample(u, image);
+                let cell = self.distribution(compensate)?.sample(u, image);
                 let x = cell.x + image.half_texel();
                 let uv = Vec2::new(x - floor(x), cell.y);
                 let (local, sin_t) = uv_to_direction(uv);
-                if sin_t <= 0.0 || pdf_uv <= 0.0 {
+                if sin_t <= 0.0 {
                     return None;
                 }
                 // Density and radiance are taken from the direction itself (not from the
@@ -345,11 +345,7 @@ impl Environment {
     pub fn pdf(&self, w: Vec3, compensate: bool) -> f32 {
         match &self.radiance {
             Radiance::Constant(_) => uniform_sphere_pdf(w),
-            Radiance::Map { image, .. } => {
-                let local = self.to_local * w;
-                let cell = image.locate(direction_to_uv(local));
-                self.map_pdf(local, &cell, &image.corners(&cell), compensate)
-            }
+            Radiance::Map { .. } => self.eval_pdf(w, compensate).1,
         }
     }
 
