@@ -2,9 +2,13 @@
 """lightlab against Mitsuba 3 on the same XML files at the same spp, measured in one run on
 one machine: the ratio of samples per second, as issue 13 asks for.
 
-    python3 benches/mitsuba_compare.py [--spp N] [--runs R] [--threads T] [--scalar] [SCENE.xml ...]
+    python3 benches/mitsuba_compare.py [--spp N] [--runs R] [--threads T] [--scalar] [--builtins]
+                                       [SCENE.xml ...]
 
-With no scene it takes every scene of tests/scenes/. It installs what it needs itself: a
+With no scene it takes every scene of tests/scenes/. --builtins adds (or, with no scene
+given, takes instead) each built-in scene written out as XML (`lightlab export`) that
+Mitsuba 3 can read: those with Phong materials (Mitsuba 0.6's plugin, which Mitsuba 3
+lacks) are listed as skipped. It installs what it needs itself: a
 virtual environment in target/bench-venv with mitsuba, embreex and numpy (PyPI), and it
 points DRJIT_LIBLLVM_PATH at Debian's libLLVM-19.so (`apt-get install libllvm19`) so that
 Mitsuba's vectorised llvm_ad_rgb variant runs. It builds lightlab in release mode first.
@@ -101,12 +105,32 @@ def mitsuba_times(variant, scene, spp, runs, env):
     return [float(x) for x in r.stdout.split()]
 
 
+def exported_builtins(exe):
+    """Writes every built-in scene as XML into a temporary folder; returns the files
+    Mitsuba 3 can read, and prints the others with the reason."""
+    folder = tempfile.mkdtemp(prefix="lightlab-builtins-")
+    listing = subprocess.run([exe, "scenes"], capture_output=True, text=True, check=True).stdout
+    files = []
+    for line in listing.splitlines():
+        name = line.split()[0].removeprefix("builtin:")
+        xml = os.path.join(folder, name + ".xml")
+        r = subprocess.run([exe, "export", "builtin:" + name, "-o", xml], capture_output=True, text=True)
+        notes = [l for l in r.stderr.splitlines() if l.startswith(("note:", "error:"))]
+        if r.returncode != 0 or any("phong" in l for l in notes):
+            print(f"skipped builtin:{name}: {'; '.join(notes)}", file=sys.stderr)
+            continue
+        files.append(xml)
+    return files
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--spp", type=int, default=256)
     ap.add_argument("--runs", type=int, default=5)
     ap.add_argument("--threads", type=int, default=os.cpu_count() or 1)
     ap.add_argument("--scalar", action="store_true", help="also time Mitsuba's scalar_rgb variant")
+    ap.add_argument("--builtins", action="store_true",
+                    help="add the built-in scenes Mitsuba 3 can read, written out as XML")
     ap.add_argument("scenes", nargs="*")
     a = ap.parse_args()
     ensure_venv()
@@ -114,7 +138,10 @@ def main():
     subprocess.run(["cargo", "build", "--release", "--quiet"], cwd=ROOT, check=True)
     target = os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))
     exe = os.path.join(target, "release", "lightlab")
-    scenes = a.scenes or sorted(glob.glob(os.path.join(ROOT, "tests", "scenes", "*.xml")))
+    if a.builtins:
+        scenes = a.scenes + exported_builtins(exe)
+    else:
+        scenes = a.scenes or sorted(glob.glob(os.path.join(ROOT, "tests", "scenes", "*.xml")))
     variants = (["scalar_rgb"] if a.scalar else []) + (["llvm_ad_rgb"] if "DRJIT_LIBLLVM_PATH" in env else [])
     if "llvm_ad_rgb" not in variants:
         print("warning: no libLLVM-19.so found (apt-get install libllvm19): llvm_ad_rgb skipped", file=sys.stderr)

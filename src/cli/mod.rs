@@ -5,6 +5,7 @@ mod bench;
 mod compare;
 mod converge;
 mod diff;
+mod export;
 mod figure;
 mod lab_args;
 mod merge;
@@ -71,6 +72,8 @@ enum Command {
     Diff(diff::DiffArgs),
     /// List the built-in scenes.
     Scenes,
+    /// Write a scene (a built-in one) as a Mitsuba 3 XML file, meshes and map beside it.
+    Export(export::ExportArgs),
     /// Draw a named warp's samples beside its histograms and run its chi-square test.
     Warp(warp::WarpArgs),
     /// Render a reference progressively until an error target or a budget (EXR).
@@ -103,6 +106,7 @@ pub fn main() -> i32 {
         Command::Render(a) => render::run(&a),
         Command::Diff(a) => diff::run(&a),
         Command::Scenes => scenes::run(),
+        Command::Export(a) => export::run(&a),
         Command::Warp(a) => warp::run(&a).map_err(CliError::input),
         Command::Reference(a) => reference::run(&a),
         Command::Compare(a) => compare::run(&a),

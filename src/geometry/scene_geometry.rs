@@ -118,6 +118,21 @@ impl Geometry {
         &self.prims
     }
 
+    /// The primitives in the order they were added to the scene (padding slots left
+    /// out).
+    pub fn primitives_as_added(&self) -> Vec<Primitive> {
+        let mut added: Vec<(u32, Primitive)> = self
+            .bvh
+            .primitive_order()
+            .iter()
+            .zip(&self.prims)
+            .filter(|(i, _)| **i != PADDING)
+            .map(|(&i, p)| (i, *p))
+            .collect();
+        added.sort_unstable_by_key(|(i, _)| *i);
+        added.into_iter().map(|(_, p)| p).collect()
+    }
+
     /// The BVH.
     pub fn bvh(&self) -> &Bvh {
         &self.bvh

@@ -65,6 +65,16 @@ impl Camera {
         }
     }
 
+    /// The camera-to-world transform (Mitsuba's sensor `to_world`).
+    pub fn to_world(&self) -> Affine3A {
+        self.to_world
+    }
+
+    /// The horizontal field of view in degrees.
+    pub fn fov_x_degrees(&self) -> f32 {
+        2.0 * self.tan_half_x.atan().to_degrees()
+    }
+
     /// The ray through film position `p` in pixels (x right, y down, (0,0) the top-left
     /// corner of the image). The direction is unit length.
     #[inline]

@@ -8,6 +8,7 @@ pub mod builtin;
 pub mod camera;
 mod environment;
 mod error;
+pub mod export;
 pub mod mesh_io;
 pub mod texture;
 pub mod xml;

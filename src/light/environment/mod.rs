@@ -209,7 +209,35 @@ fn bilerp(t: &[Spectrum; 4], f: Vec2) -> Spectrum {
     top * (1.0 - f.y) + bottom * f.y
 }
 
+/// What an environment was made from (for writing it back out as a scene file).
+#[derive(Clone, Copy, Debug)]
+pub enum EnvironmentSource<'a> {
+    /// Mitsuba's `constant`: one radiance from every direction.
+    Constant(Spectrum),
+    /// Mitsuba's `envmap`: a lat-long image, its scale and its rotation to the world.
+    Map {
+        /// The image.
+        image: &'a LatLongImage,
+        /// The factor on its texels.
+        scale: f32,
+        /// The rotation from the map's frame to the world.
+        to_world: Mat3,
+    },
+}
+
 impl Environment {
+    /// What the environment was made from.
+    pub fn source(&self) -> EnvironmentSource<'_> {
+        match &self.radiance {
+            Radiance::Constant(l) => EnvironmentSource::Constant(*l),
+            Radiance::Map { image, .. } => EnvironmentSource::Map {
+                image,
+                scale: self.scale,
+                to_world: self.to_world,
+            },
+        }
+    }
+
     /// A constant environment of radiance `l` (Mitsuba's `constant`), sampled uniformly
     /// over the sphere.
     pub fn constant(l: Spectrum) -> Environment {
