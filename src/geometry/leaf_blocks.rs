@@ -17,9 +17,15 @@ use glam::{Vec2, Vec3};
 pub struct LeafBlocks {
     /// Block k's triangles (lanes of other shapes and padding left empty).
     triangles: Vec<Triangle4>,
-    /// Block k's lanes holding a shape other than a triangle, as a bit mask.
+    /// Block k's lanes holding a shape other than a triangle, as a bit mask, and
+    /// [`HAS_TRIANGLES`] where some lane holds a triangle.
     others: Vec<u8>,
 }
+
+/// The bit of [`LeafBlocks::others`] set where a block holds a triangle: blocks of other
+/// shapes alone (a small scene's floor and lights, laid out together) skip the SIMD
+/// triangle test.
+const HAS_TRIANGLES: u8 = 1 << 7;
 
 /// Least share of triangles among the primitives for which the scene BVH is built with
 /// leaf blocks. Below it leaves stay one primitive at a time (the SAH of blocks makes
@@ -77,13 +83,21 @@ impl LeafBlocks {
             Shape::Triangle(t) => Some((at as u32, [t.p0, t.e1, t.e2])),
             _ => None,
         });
-        // Padding slots hold an empty triangle, so they never count as other shapes.
+        // Padding slots hold an empty triangle, so they never count as other shapes (nor
+        // as triangles).
+        let order = bvh.primitive_order();
         let others = laid
             .chunks(BLOCK)
-            .map(|block| {
+            .zip(order.chunks(BLOCK))
+            .map(|(block, ids)| {
                 let other = |(_, p): &(usize, &Primitive)| !matches!(p.shape, Shape::Triangle(_));
-                (block.iter().enumerate().filter(other))
-                    .fold(0u8, |mask, (lane, _)| mask | 1 << lane)
+                let mask = (block.iter().enumerate().filter(other))
+                    .fold(0u8, |mask, (lane, _)| mask | 1 << lane);
+                let triangle = block
+                    .iter()
+                    .zip(ids)
+                    .any(|(p, &id)| id != PADDING && matches!(p.shape, Shape::Triangle(_)));
+                mask | if triangle { HAS_TRIANGLES } else { 0 }
             })
             .collect();
         (bvh, laid, LeafBlocks { triangles, others })
@@ -102,12 +116,15 @@ impl LeafBlocks {
     ) -> Option<(u32, ShapeHit)> {
         let k = first as usize / BLOCK;
         let mut best = None;
-        if let Some(h) = self.triangles[k].closest_hit(ray, t_closest) {
+        let kinds = self.others[k];
+        if kinds & HAS_TRIANGLES != 0
+            && let Some(h) = self.triangles[k].closest_hit(ray, t_closest)
+        {
             t_closest = h.hit.t;
             let uv = Vec2::new(h.hit.b1, h.hit.b2);
             best = Some((first + h.lane as u32, ShapeHit { t: h.hit.t, uv }));
         }
-        let mut others = self.others[k];
+        let mut others = kinds & !HAS_TRIANGLES;
         while others != 0 {
             let prim = first + others.trailing_zeros();
             others &= others - 1;
@@ -123,10 +140,11 @@ impl LeafBlocks {
     #[inline(always)]
     pub fn any_hit(&self, prims: &[Primitive], first: u32, ray: &Ray, t_max: f32) -> bool {
         let k = first as usize / BLOCK;
-        if self.triangles[k].any_hit(ray, t_max) {
+        let kinds = self.others[k];
+        if kinds & HAS_TRIANGLES != 0 && self.triangles[k].any_hit(ray, t_max) {
             return true;
         }
-        let mut others = self.others[k];
+        let mut others = kinds & !HAS_TRIANGLES;
         while others != 0 {
             let prim = first + others.trailing_zeros();
             others &= others - 1;
