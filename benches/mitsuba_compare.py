@@ -6,9 +6,9 @@ one machine: the ratio of samples per second, as issue 13 asks for.
                                        [SCENE.xml ...]
 
 With no scene it takes every scene of tests/scenes/. --builtins adds (or, with no scene
-given, takes instead) each built-in scene written out as XML (`lightlab export`) that
-Mitsuba 3 can read: those with Phong materials (Mitsuba 0.6's plugin, which Mitsuba 3
-lacks) are listed as skipped. It installs what it needs itself: a
+given, takes instead) each built-in scene written out as XML (`lightlab export`, its
+sampler set to `independent`) that Mitsuba 3 can read: those with Phong materials
+(Mitsuba 0.6's plugin, which Mitsuba 3 lacks) are listed as skipped. It installs what it needs itself: a
 virtual environment in target/bench-venv with mitsuba, embreex and numpy (PyPI), and it
 points DRJIT_LIBLLVM_PATH at Debian's libLLVM-19.so (`apt-get install libllvm19`) so that
 Mitsuba's vectorised llvm_ad_rgb variant runs. It builds lightlab in release mode first.
@@ -28,6 +28,7 @@ second.
 import argparse
 import glob
 import os
+import re
 import statistics
 import subprocess
 import sys
@@ -106,8 +107,10 @@ def mitsuba_times(variant, scene, spp, runs, env):
 
 
 def exported_builtins(exe):
-    """Writes every built-in scene as XML into a temporary folder; returns the files
-    Mitsuba 3 can read, and prints the others with the reason."""
+    """Writes every built-in scene as XML into a temporary folder, with the independent
+    sampler (Mitsuba's `ldsampler`, the export's name for lightlab's Sobol, rounds sample
+    counts up and is biased near steep integrands); returns the files Mitsuba 3 can read,
+    and prints the others with the reason."""
     folder = tempfile.mkdtemp(prefix="lightlab-builtins-")
     listing = subprocess.run([exe, "scenes"], capture_output=True, text=True, check=True).stdout
     files = []
@@ -116,9 +119,13 @@ def exported_builtins(exe):
         xml = os.path.join(folder, name + ".xml")
         r = subprocess.run([exe, "export", "builtin:" + name, "-o", xml], capture_output=True, text=True)
         notes = [l for l in r.stderr.splitlines() if l.startswith(("note:", "error:"))]
-        if r.returncode != 0 or any("phong" in l for l in notes):
+        if r.returncode != 0 or any("Mitsuba 3 will not read this file" in l for l in notes):
             print(f"skipped builtin:{name}: {'; '.join(notes)}", file=sys.stderr)
             continue
+        with open(xml) as f:
+            text = f.read()
+        with open(xml, "w") as f:
+            f.write(re.sub(r'<sampler type="\w+">', '<sampler type="independent">', text))
         files.append(xml)
     return files
 

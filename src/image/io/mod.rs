@@ -14,7 +14,7 @@ mod png;
 use exr::{read_exr, write_exr};
 use hdr::read_hdr;
 use pfm::read_pfm;
-pub use pfm::write_pfm;
+pub use pfm::{pfm_bytes, write_pfm};
 use png::read_png;
 pub use png::{linear_to_srgb, srgb_to_linear, to_srgb8, write_png, write_rgb8_png};
 

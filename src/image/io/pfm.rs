@@ -7,9 +7,11 @@ use super::{ImageError, LoadedImage, image_error, write_atomically};
 use crate::image::limits::MAX_IMAGE_PIXELS;
 use crate::math::Spectrum;
 
-/// Writes a little-endian PFM (bottom row first, as the format requires).
-pub fn write_pfm(width: u32, height: u32, rgb: &[Spectrum], path: &Path) -> Result<(), ImageError> {
+/// A little-endian PFM file, whole (bottom row first, as the format requires), of the
+/// row-major, top-first `rgb`.
+pub fn pfm_bytes(width: u32, height: u32, rgb: &[Spectrum]) -> Vec<u8> {
     let mut out = format!("PF\n{width} {height}\n-1.0\n").into_bytes();
+    out.reserve(12 * rgb.len());
     for y in (0..height).rev() {
         for c in &rgb[(y * width) as usize..((y + 1) * width) as usize] {
             for v in c.to_array() {
@@ -17,6 +19,12 @@ pub fn write_pfm(width: u32, height: u32, rgb: &[Spectrum], path: &Path) -> Resu
             }
         }
     }
+    out
+}
+
+/// Writes a little-endian PFM (see [`pfm_bytes`]).
+pub fn write_pfm(width: u32, height: u32, rgb: &[Spectrum], path: &Path) -> Result<(), ImageError> {
+    let out = pfm_bytes(width, height, rgb);
     write_atomically(path, |tmp| fs::write(tmp, &out).map_err(|e| e.to_string()))
 }
 

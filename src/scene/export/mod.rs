@@ -12,12 +12,24 @@
 //! decimal that reads back to the same `f32`, so files and meshes keep their values
 //! exactly; shapes given by a transform come back within a few ulps.
 //!
+//! Numbers below 1e-9 in magnitude (rounding residues such as cos 90° in a rotation) are
+//! written as 0: the loader refuses such magnitudes.
+//!
 //! Not representable, and refused with a message: textures (material or emission),
-//! two-sided emitters, and render settings a Mitsuba file cannot hold. `phong` is
-//! Mitsuba 0.6's plugin: lightlab reads it, Mitsuba 3 does not (the export says so).
+//! two-sided emitters, meshes whose triangles differ in material or emission, and render
+//! settings a Mitsuba file cannot hold. Written with a note (in the file and in
+//! [`Exported::notes`]): `phong`, Mitsuba 0.6's plugin, and a box filter wider than a
+//! pixel, which lightlab reads and Mitsuba 3 refuses ([`UNREADABLE`]); a sample count that
+//! Mitsuba 3's sampler rounds up; a polygon light, written as the mesh of its
+//! triangulation (read back, one light per triangle: the same emission, sampled
+//! triangle by triangle). Mitsuba's `ldsampler`, the name under which lightlab's Sobol
+//! sampler is written, is biased where the integrand is steep in both the film position
+//! and the light sample (BENCHMARKS.md, session 20): compare against Mitsuba's
+//! `independent` sampler there.
 
 mod materials;
 mod ply;
+mod sensor;
 mod shapes;
 mod text;
 
@@ -29,16 +41,17 @@ use glam::Mat4;
 use super::Scene;
 use crate::bsdf::Material;
 use crate::geometry::{NO_LIGHT, Primitive, Shape};
-use crate::image::Filter;
-use crate::image::output::write_atomically;
+use crate::image::io::pfm_bytes;
 use crate::light::Light;
 use crate::light::environment::EnvironmentSource;
 use crate::math::Spectrum;
-use crate::sampling::SamplerKind;
-use crate::settings::{MisHeuristic, RenderPatch};
 use materials::bsdf;
-use shapes::{mesh_shape, pfm_bytes, shape};
-use text::{comment, float, integer, matrix, point, rgb};
+use sensor::{integrator, sensor};
+use shapes::{mesh_shape, shape};
+use text::{comment, escape, float, matrix, point, rgb};
+
+/// How a note that Mitsuba 3 will refuse the file begins.
+pub const UNREADABLE: &str = "Mitsuba 3 will not read this file: ";
 
 /// What an export wrote, and what a reader should know about it.
 #[derive(Debug)]
@@ -51,7 +64,8 @@ pub struct Exported {
 
 /// Writes `scene` as the Mitsuba 3 XML file `xml` (its meshes and environment map as
 /// files beside it, named after it). Nothing is written when the scene cannot be
-/// expressed; each file is written whole or not at all.
+/// expressed; the files are written to temporaries first and renamed into place only
+/// when all of them are whole.
 pub fn export(scene: &Scene, xml: &Path) -> Result<Exported, String> {
     let stem = xml
         .file_stem()
@@ -60,24 +74,43 @@ pub fn export(scene: &Scene, xml: &Path) -> Result<Exported, String> {
         .to_owned();
     let dir = xml.parent().unwrap_or(Path::new("")).to_path_buf();
     let plan = Plan::new(scene, &stem)?;
-    let mut files = Vec::new();
-    for (name, bytes) in &plan.side_files {
-        let path = dir.join(name);
-        write_atomically(&path, |tmp| {
-            std::fs::write(tmp, bytes).map_err(|e| e.to_string())
-        })
-        .map_err(|e| format!("{}: {e}", path.display()))?;
-        files.push(path);
-    }
-    write_atomically(xml, |tmp| {
-        std::fs::write(tmp, &plan.xml).map_err(|e| e.to_string())
-    })
-    .map_err(|e| format!("{}: {e}", xml.display()))?;
-    files.push(xml.to_path_buf());
+    let mut files: Vec<(PathBuf, &[u8])> = plan
+        .side_files
+        .iter()
+        .map(|(name, bytes)| (dir.join(name), bytes.as_slice()))
+        .collect();
+    files.push((xml.to_path_buf(), plan.xml.as_bytes()));
+    write_all(&files)?;
     Ok(Exported {
-        files,
+        files: files.into_iter().map(|(path, _)| path).collect(),
         notes: plan.notes,
     })
+}
+
+/// Writes every file to a temporary sibling, then renames them all into place; on any
+/// failure the temporaries are removed and nothing is replaced.
+fn write_all(files: &[(PathBuf, &[u8])]) -> Result<(), String> {
+    let temporary = |path: &Path| {
+        let name = path.file_name().unwrap_or_default().to_string_lossy();
+        path.with_file_name(format!(".{name}.tmp-{}", std::process::id()))
+    };
+    let mut written = Vec::new();
+    let result = files.iter().try_for_each(|(path, bytes)| {
+        let tmp = temporary(path);
+        written.push(tmp.clone());
+        std::fs::write(&tmp, bytes).map_err(|e| format!("{}: {e}", path.display()))
+    });
+    let result = result.and_then(|()| {
+        files.iter().try_for_each(|(path, _)| {
+            std::fs::rename(temporary(path), path).map_err(|e| format!("{}: {e}", path.display()))
+        })
+    });
+    if result.is_err() {
+        for tmp in written {
+            let _ = std::fs::remove_file(tmp);
+        }
+    }
+    result
 }
 
 /// The XML text and the side files (name beside the XML file, contents), made before
@@ -90,20 +123,31 @@ struct Plan {
 
 impl Plan {
     fn new(scene: &Scene, stem: &str) -> Result<Plan, String> {
-        refuse_unrepresentable(scene)?;
+        let prims = scene.geometry.primitives_as_added();
+        refuse_unrepresentable(scene, &prims)?;
         let mut plan = Plan {
             xml: String::new(),
             side_files: Vec::new(),
             notes: Vec::new(),
         };
-        let prims = scene.geometry.primitives_as_added();
         let used = used_materials(scene, &prims);
         if used
             .iter()
             .any(|&m| matches!(scene.materials[m], Material::Phong(_)))
         {
+            plan.notes.push(format!(
+                "{UNREADABLE}`phong` is Mitsuba 0.6's plugin (lightlab reads it)"
+            ));
+        }
+        let polygons = scene
+            .lights
+            .iter()
+            .filter(|l| matches!(l, Light::Polygon(_)));
+        if polygons.count() > 0 {
             plan.notes.push(
-                "`phong` is Mitsuba 0.6's plugin: lightlab reads it, Mitsuba 3 does not".into(),
+                "each polygon light is written as the mesh of its triangulation: read back, \
+                 one light per triangle (the same emission, sampled triangle by triangle)"
+                    .into(),
             );
         }
         let x = &mut plan.xml;
@@ -152,11 +196,18 @@ impl Plan {
                     } => {
                         let file = format!("{stem}_envmap.pfm");
                         x.push_str("    <emitter type=\"envmap\">\n");
-                        let _ = writeln!(x, "        <string name=\"filename\" value=\"{file}\"/>");
+                        let _ = writeln!(
+                            x,
+                            "        <string name=\"filename\" value=\"{}\"/>",
+                            escape(&file)
+                        );
                         float(x, 2, "scale", scale);
                         matrix(x, 2, &Mat4::from_mat3(to_world));
                         x.push_str("    </emitter>\n");
-                        plan.side_files.push((file, pfm_bytes(image)));
+                        plan.side_files.push((
+                            file,
+                            pfm_bytes(image.width as u32, image.height as u32, &image.texels),
+                        ));
                     }
                 },
                 Light::Area(_) | Light::Polygon(_) => {}
@@ -177,29 +228,49 @@ impl Plan {
     }
 }
 
-/// Refuses what a Mitsuba 3 file (as lightlab reads it) cannot say.
-fn refuse_unrepresentable(scene: &Scene) -> Result<(), String> {
-    if scene.textures.iter().any(Option::is_some) {
-        return Err("textured materials cannot be exported (their bitmaps are not kept)".into());
+/// Refuses what a Mitsuba 3 file (as lightlab reads it) cannot say, naming the shape (by
+/// where it is) or the material (`material-N`, the id the export would give it).
+fn refuse_unrepresentable(scene: &Scene, prims: &[Primitive]) -> Result<(), String> {
+    if let Some(m) = used_materials(scene, prims)
+        .into_iter()
+        .find(|&m| scene.texture(m as u32).is_some())
+    {
+        return Err(format!(
+            "material-{m} is textured, and textures cannot be exported (their bitmaps are \
+             not kept)"
+        ));
     }
-    for light in &scene.lights {
-        let (textured, two_sided) = match light {
-            Light::Area(a) => (a.texture.is_some(), a.two_sided),
-            Light::Polygon(p) => (false, p.two_sided),
+    for p in prims {
+        let (textured, two_sided) = match scene.lights.get(p.light as usize) {
+            Some(Light::Area(a)) => (a.texture.is_some(), a.two_sided),
+            Some(Light::Polygon(l)) => (false, l.two_sided),
             _ => (false, false),
         };
+        let shape = describe(&p.shape);
         if textured {
-            return Err("textured emitters cannot be exported (their bitmaps are not kept)".into());
+            return Err(format!(
+                "{shape} is a textured emitter, and textures cannot be exported (their \
+                 bitmaps are not kept)"
+            ));
         }
         if two_sided {
-            return Err(
-                "a two-sided emitter has no Mitsuba 3 form (area emitters emit from the \
-                        front only)"
-                    .into(),
-            );
+            return Err(format!(
+                "{shape} emits from both sides, which has no Mitsuba 3 form (area \
+                 emitters emit from the front only)"
+            ));
         }
     }
     Ok(())
+}
+
+/// A shape, named by where it is.
+fn describe(shape: &Shape) -> String {
+    match shape {
+        Shape::Sphere(s) => format!("the sphere centred at {}", s.center),
+        Shape::Rectangle(r) => format!("the rectangle with corner {}", r.o),
+        Shape::Disk(d) => format!("the disk centred at {}", d.center),
+        Shape::Triangle(t) => format!("the mesh with a vertex at {}", t.p0),
+    }
 }
 
 /// The materials that some primitive uses, in index order.
@@ -240,106 +311,15 @@ fn shapes_in_order(scene: &Scene, prims: &[Primitive]) -> Result<Vec<Item>, Stri
                 items.push(Item::Mesh(tri.mesh as usize, this.0, this.1));
             }
             Some(first) if first == this => {}
-            Some(_) => {
+            Some((material, _)) => {
                 return Err(format!(
-                    "mesh {} has triangles of different materials or emission, which one \
-                     Mitsuba shape cannot hold",
-                    tri.mesh
+                    "{} has triangles of different materials or emission (material-{material} \
+                     and material-{}), which one Mitsuba shape cannot hold",
+                    describe(&p.shape),
+                    this.0
                 ));
             }
         }
     }
     Ok(items)
-}
-
-/// `<integrator type="direct">` with the sample counts the scene asks for.
-fn integrator(x: &mut String, requested: &RenderPatch) -> Result<(), String> {
-    let rest = RenderPatch {
-        sampler: None,
-        seed: None,
-        mis: None,
-        light_samples: None,
-        bsdf_samples: None,
-        ..requested.clone()
-    };
-    if rest != RenderPatch::default() {
-        return Err(format!(
-            "the scene asks for render settings a Mitsuba file cannot hold: {rest}"
-        ));
-    }
-    if requested.mis.is_some_and(|h| h != MisHeuristic::Power) {
-        return Err(format!(
-            "the scene asks for --mis {}; Mitsuba's `direct` integrator has the power heuristic \
-             only",
-            requested.mis.map_or("", |h| h.name())
-        ));
-    }
-    let counts = [
-        ("emitter_samples", requested.light_samples),
-        ("bsdf_samples", requested.bsdf_samples),
-    ];
-    if counts.iter().all(|(_, n)| n.is_none()) {
-        x.push_str("    <integrator type=\"direct\"/>\n");
-        return Ok(());
-    }
-    x.push_str("    <integrator type=\"direct\">\n");
-    for (name, n) in counts {
-        if let Some(n) = n {
-            integer(x, 2, name, n);
-        }
-    }
-    x.push_str("    </integrator>\n");
-    Ok(())
-}
-
-/// The perspective sensor with its sampler and film; what Mitsuba 3 would read
-/// differently goes to `notes`.
-fn sensor(x: &mut String, scene: &Scene, notes: &mut Vec<String>) -> Result<(), String> {
-    let camera = &scene.camera;
-    x.push_str("    <sensor type=\"perspective\">\n");
-    float(x, 2, "fov", camera.fov_x_degrees());
-    let _ = writeln!(x, "        <string name=\"fov_axis\" value=\"x\"/>");
-    float(x, 2, "near_clip", camera.near_clip);
-    matrix(x, 2, &Mat4::from(camera.to_world()));
-    // Unset, lightlab's default sampler (Sobol) renders a built-in scene; `ldsampler` is
-    // the name the loader reads as Sobol and Mitsuba's own low-discrepancy sampler.
-    let sampler = match scene.requested.sampler.unwrap_or(SamplerKind::Sobol) {
-        SamplerKind::Independent => "independent",
-        SamplerKind::Stratified => "stratified",
-        SamplerKind::Sobol => "ldsampler",
-    };
-    let _ = writeln!(x, "        <sampler type=\"{sampler}\">");
-    integer(x, 3, "sample_count", scene.spp);
-    if let Some(seed) = scene.requested.seed {
-        let seed = u32::try_from(seed).map_err(|_| format!("seed {seed} is above 2^32 − 1"))?;
-        integer(x, 3, "seed", seed);
-    }
-    x.push_str("        </sampler>\n");
-    x.push_str("        <film type=\"hdrfilm\">\n");
-    integer(x, 3, "width", camera.width);
-    integer(x, 3, "height", camera.height);
-    match scene.filter {
-        // Mitsuba 3's box is the one-pixel box and takes no radius.
-        Filter::Box { radius: 0.5 } => {
-            x.push_str("            <rfilter type=\"box\"/>\n");
-        }
-        Filter::Box { radius } => {
-            notes.push(format!(
-                "the box filter of radius {radius}: Mitsuba 3's box has radius 0.5 only"
-            ));
-            rfilter(x, "box", "radius", radius);
-        }
-        Filter::Tent { radius } => rfilter(x, "tent", "radius", radius),
-        Filter::Gaussian { stddev } => rfilter(x, "gaussian", "stddev", stddev),
-    }
-    x.push_str("        </film>\n");
-    x.push_str("    </sensor>\n");
-    Ok(())
-}
-
-/// `<rfilter type="name">` with one parameter.
-fn rfilter(x: &mut String, name: &str, param: &str, value: f32) {
-    let _ = writeln!(x, "            <rfilter type=\"{name}\">");
-    float(x, 4, param, value);
-    x.push_str("            </rfilter>\n");
 }

@@ -5,9 +5,8 @@ use std::fmt::Write as _;
 
 use glam::{Affine3A, Mat4, Vec3};
 
-use super::text::{float, matrix, point, rgb};
+use super::text::{escape, float, matrix, point, rgb};
 use crate::geometry::{Mesh, Primitive, Shape};
-use crate::light::environment::LatLongImage;
 use crate::math::Spectrum;
 
 /// A rectangle, sphere or disk with its material and emission.
@@ -63,7 +62,11 @@ pub fn shape(x: &mut String, prim: &Primitive, emission: Option<Spectrum>) {
 /// A mesh from its PLY file `file` (world-space vertices: no transform).
 pub fn mesh_shape(x: &mut String, file: &str, mesh: &Mesh, material: u32, e: Option<Spectrum>) {
     x.push_str("    <shape type=\"ply\">\n");
-    let _ = writeln!(x, "        <string name=\"filename\" value=\"{file}\"/>");
+    let _ = writeln!(
+        x,
+        "        <string name=\"filename\" value=\"{}\"/>",
+        escape(file)
+    );
     if mesh.normals.is_empty() {
         // Without this, Mitsuba (and the loader) would smooth the mesh.
         x.push_str("        <boolean name=\"face_normals\" value=\"true\"/>\n");
@@ -80,19 +83,4 @@ fn shape_tail(x: &mut String, material: u32, emission: Option<Spectrum>) {
         x.push_str("        </emitter>\n");
     }
     x.push_str("    </shape>\n");
-}
-
-/// The map as a PFM file (little-endian, rows bottom to top).
-pub fn pfm_bytes(image: &LatLongImage) -> Vec<u8> {
-    let header = format!("PF\n{} {}\n-1.0\n", image.width, image.height);
-    let mut out = Vec::with_capacity(header.len() + 12 * image.texels.len());
-    out.extend_from_slice(header.as_bytes());
-    for row in (0..image.height).rev() {
-        for t in &image.texels[row * image.width..(row + 1) * image.width] {
-            for c in t.to_array() {
-                out.extend_from_slice(&c.to_le_bytes());
-            }
-        }
-    }
-    out
 }
