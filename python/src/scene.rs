@@ -1,5 +1,6 @@
 //! Scenes loaded once and reused across renders: `lightlab.load_scene(path, **defines)`.
 
+use std::path::PathBuf;
 use std::sync::Arc;
 
 use lightlab::scene::{self, Scene};
@@ -35,6 +36,18 @@ impl PyScene {
     #[getter]
     fn size(&self) -> (u32, u32) {
         (self.scene.camera.width, self.scene.camera.height)
+    }
+
+    /// Writes the scene as a Mitsuba 3 XML file at `path` (meshes and environment map
+    /// beside it; `lightlab export`), GIL released. Returns (the files written, notes on
+    /// what Mitsuba 3 refuses or reads otherwise); a scene the format cannot hold raises
+    /// `SceneError` naming what.
+    fn export(&self, py: Python<'_>, path: PathBuf) -> PyResult<(Vec<PathBuf>, Vec<String>)> {
+        let scene = Arc::clone(&self.scene);
+        let written = py.detach(move || scene::export::export(&scene, &path));
+        let exported =
+            written.map_err(|e| SceneError::new_err(format!("{}: {e}", self.scene.name)))?;
+        Ok((exported.files, exported.notes))
     }
 
     fn __repr__(&self) -> String {
