@@ -9,7 +9,9 @@
 //! block's Student t statistic (PASSES − 1 degrees of freedom) is tested two-sided at a
 //! Šidák-corrected 1% level over the blocks, as Mitsuba's own render tests do, and the
 //! image mean must be within 1% of the reference's. The reference's own noise enters the
-//! standard error through the variance channels `make_refs.py` stores (from 8 passes).
+//! standard error through the variance channels `make_refs.py` stores (from 8 passes),
+//! and so does the rounding of Mitsuba's f32 film sums ([`FILM_ROUNDING`]), which matters
+//! only in blocks with almost no noise.
 
 mod common;
 use common::blocks::{block_means, block_variances};
@@ -213,7 +215,8 @@ fn scenes_match_mitsuba_references() {
 }
 
 /// Built-in scenes Mitsuba 3 can read once written out (`lightlab export`; the others
-/// have Phong materials), with the size of their references: the built-in scene itself,
+/// have Phong materials), with the size of their references (the same list as
+/// `make_refs.py`'s `BUILTINS`): the built-in scene itself,
 /// rendered at that size, must agree with Mitsuba's render of the exported file
 /// (`make_refs.py --builtins`, references `refs/builtin_NAME.exr`).
 const BUILTIN_CASES: &[(&str, (u32, u32))] =

@@ -7,7 +7,7 @@ use clap::Args;
 
 use super::CliError;
 use super::args::SceneFileArgs;
-use crate::scene::export::export;
+use crate::scene::export::{check_output, export};
 
 /// Arguments of `export`.
 #[derive(Args, Debug)]
@@ -25,23 +25,7 @@ pub struct ExportArgs {
 /// Runs `export`: writes the files, lists them, and prints what Mitsuba 3 would read
 /// differently.
 pub fn run(args: &ExportArgs) -> Result<(), CliError> {
-    let ext = args.output.extension().and_then(|e| e.to_str());
-    if !ext.is_some_and(|e| e.eq_ignore_ascii_case("xml")) {
-        return Err(CliError::input(format!(
-            "-o {}: the export is a Mitsuba XML file: give a .xml path",
-            args.output.display()
-        )));
-    }
-    let folder = args.output.parent().filter(|p| !p.as_os_str().is_empty());
-    if let Some(folder) = folder
-        && !folder.is_dir()
-    {
-        return Err(CliError::input(format!(
-            "-o {}: folder {} does not exist",
-            args.output.display(),
-            folder.display()
-        )));
-    }
+    check_output(&args.output).map_err(|e| CliError::input(format!("-o {e}")))?;
     let scene = args.file.load(&args.scene)?;
     let exported = export(&scene, &args.output)
         .map_err(|e| CliError::input(format!("{}: cannot export: {e}", scene.name)))?;

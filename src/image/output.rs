@@ -54,7 +54,7 @@ fn alive(pid: u32) -> bool {
 }
 
 /// Removes temporaries of `path` left by processes that no longer run.
-fn remove_stale(path: &Path, file_name: &str) {
+pub(crate) fn remove_stale(path: &Path, file_name: &str) {
     let prefix = format!(".{file_name}.tmp-");
     let folder = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,

@@ -35,8 +35,8 @@ PASSES = 8
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 
-# The built-in scenes Mitsuba 3 can read once exported, with the size of their references
-# (tests/xml_scenes.rs, BUILTIN_CASES).
+# The built-in scenes Mitsuba 3 can read once exported, with the size of their references:
+# the same list as tests/xml_scenes.rs's BUILTIN_CASES (keep them in step).
 BUILTINS = {"sphere-near-plane": (96, 64), "materials": (96, 64)}
 
 
@@ -74,6 +74,8 @@ def main():
     variant = a.variant or ("llvm_ad_rgb" if os.environ.get("DRJIT_LIBLLVM_PATH") else "scalar_rgb")
     mi.set_variant(variant)
     os.makedirs(os.path.join(HERE, "refs"), exist_ok=True)
+    if a.builtins and a.names:
+        ap.error("--builtins makes every built-in reference; give no NAME with it")
     if a.builtins:
         folder = tempfile.mkdtemp(prefix="lightlab-refs-")
         jobs = [("builtin_" + n, exported_builtin(a.lightlab, n, size, folder)) for n, size in BUILTINS.items()]

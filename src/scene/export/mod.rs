@@ -18,8 +18,8 @@
 //! Not representable, and refused with a message: textures (material or emission),
 //! two-sided emitters, meshes whose triangles differ in material or emission, and render
 //! settings a Mitsuba file cannot hold. Written with a note (in the file and in
-//! [`Exported::notes`]): `phong`, Mitsuba 0.6's plugin, and a box filter wider than a
-//! pixel, which lightlab reads and Mitsuba 3 refuses ([`UNREADABLE`]); a sample count that
+//! [`Exported::notes`]): `phong`, Mitsuba 0.6's plugin, and a box filter of a radius other
+//! than 0.5, which lightlab reads and Mitsuba 3 refuses ([`UNREADABLE`]); a sample count that
 //! Mitsuba 3's sampler rounds up; a polygon light, written as the mesh of its
 //! triangulation (read back, one light per triangle: the same emission, sampled
 //! triangle by triangle). Mitsuba's `ldsampler`, the name under which lightlab's Sobol
@@ -42,6 +42,7 @@ use super::Scene;
 use crate::bsdf::Material;
 use crate::geometry::{NO_LIGHT, Primitive, Shape};
 use crate::image::io::pfm_bytes;
+use crate::image::output::remove_stale;
 use crate::light::Light;
 use crate::light::environment::EnvironmentSource;
 use crate::math::Spectrum;
@@ -67,6 +68,7 @@ pub struct Exported {
 /// expressed; the files are written to temporaries first and renamed into place only
 /// when all of them are whole.
 pub fn export(scene: &Scene, xml: &Path) -> Result<Exported, String> {
+    check_output(xml)?;
     let stem = xml
         .file_stem()
         .and_then(|s| s.to_str())
@@ -87,8 +89,29 @@ pub fn export(scene: &Scene, xml: &Path) -> Result<Exported, String> {
     })
 }
 
-/// Writes every file to a temporary sibling, then renames them all into place; on any
-/// failure the temporaries are removed and nothing is replaced.
+/// Checks, before any work, that `xml` names a `.xml` file in a folder that exists.
+pub fn check_output(xml: &Path) -> Result<(), String> {
+    let ext = xml.extension().and_then(|e| e.to_str());
+    if !ext.is_some_and(|e| e.eq_ignore_ascii_case("xml")) {
+        return Err(format!(
+            "{}: the export is a Mitsuba XML file: give a .xml path",
+            xml.display()
+        ));
+    }
+    match xml.parent().filter(|p| !p.as_os_str().is_empty()) {
+        Some(folder) if !folder.is_dir() => Err(format!(
+            "{}: folder {} does not exist",
+            xml.display(),
+            folder.display()
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// Writes every file to a temporary sibling (removing temporaries that killed runs left),
+/// then renames them into place, the XML file last: when a write fails, the temporaries
+/// are removed and nothing is replaced; when a rename fails, side files renamed before it
+/// may already be new, but the XML file is still the old one.
 fn write_all(files: &[(PathBuf, &[u8])]) -> Result<(), String> {
     let temporary = |path: &Path| {
         let name = path.file_name().unwrap_or_default().to_string_lossy();
@@ -96,6 +119,8 @@ fn write_all(files: &[(PathBuf, &[u8])]) -> Result<(), String> {
     };
     let mut written = Vec::new();
     let result = files.iter().try_for_each(|(path, bytes)| {
+        let name = path.file_name().unwrap_or_default().to_string_lossy();
+        remove_stale(path, &name);
         let tmp = temporary(path);
         written.push(tmp.clone());
         std::fs::write(&tmp, bytes).map_err(|e| format!("{}: {e}", path.display()))
@@ -246,7 +271,7 @@ fn refuse_unrepresentable(scene: &Scene, prims: &[Primitive]) -> Result<(), Stri
             Some(Light::Polygon(l)) => (false, l.two_sided),
             _ => (false, false),
         };
-        let shape = describe(&p.shape);
+        let shape = describe(scene, p);
         if textured {
             return Err(format!(
                 "{shape} is a textured emitter, and textures cannot be exported (their \
@@ -263,13 +288,16 @@ fn refuse_unrepresentable(scene: &Scene, prims: &[Primitive]) -> Result<(), Stri
     Ok(())
 }
 
-/// A shape, named by where it is.
-fn describe(shape: &Shape) -> String {
-    match shape {
+/// A primitive's shape, named by where it is.
+fn describe(scene: &Scene, p: &Primitive) -> String {
+    match &p.shape {
         Shape::Sphere(s) => format!("the sphere centred at {}", s.center),
         Shape::Rectangle(r) => format!("the rectangle with corner {}", r.o),
         Shape::Disk(d) => format!("the disk centred at {}", d.center),
-        Shape::Triangle(t) => format!("the mesh with a vertex at {}", t.p0),
+        Shape::Triangle(t) => match scene.lights.get(p.light as usize) {
+            Some(Light::Polygon(_)) => format!("the polygon light with a vertex at {}", t.p0),
+            _ => format!("the mesh with a vertex at {}", t.p0),
+        },
     }
 }
 
@@ -311,12 +339,15 @@ fn shapes_in_order(scene: &Scene, prims: &[Primitive]) -> Result<Vec<Item>, Stri
                 items.push(Item::Mesh(tri.mesh as usize, this.0, this.1));
             }
             Some(first) if first == this => {}
-            Some((material, _)) => {
+            Some((material, emission)) => {
+                let what = if material != this.0 {
+                    format!("materials (material-{material} and material-{})", this.0)
+                } else {
+                    format!("emission ({emission:?} and {:?})", this.1)
+                };
                 return Err(format!(
-                    "{} has triangles of different materials or emission (material-{material} \
-                     and material-{}), which one Mitsuba shape cannot hold",
-                    describe(&p.shape),
-                    this.0
+                    "{} has triangles of different {what}, which one Mitsuba shape cannot hold",
+                    describe(scene, p)
                 ));
             }
         }

@@ -70,14 +70,8 @@ pub fn sensor(x: &mut String, scene: &Scene, notes: &mut Vec<String>) -> Result<
     };
     let _ = writeln!(x, "        <sampler type=\"{sampler}\">");
     integer(x, 3, "sample_count", scene.spp);
-    // Mitsuba 3 rounds the count up: to a power of two (ldsampler), to a square
-    // (stratified).
     let n = scene.spp;
-    let rounded = match sampler {
-        "ldsampler" => n.next_power_of_two(),
-        "stratified" => (n as f64).sqrt().ceil().powi(2) as u32,
-        _ => n,
-    };
+    let rounded = mitsuba_sample_count(sampler, n);
     if rounded != n {
         notes.push(format!(
             "Mitsuba 3's {sampler} renders the {n} samples per pixel as {rounded}"
@@ -111,9 +105,60 @@ pub fn sensor(x: &mut String, scene: &Scene, notes: &mut Vec<String>) -> Result<
     Ok(())
 }
 
+/// The sample count Mitsuba 3's `sampler` renders when asked for `n`: `ldsampler` keeps
+/// the square of a power of two, at least 4 (its `set_sample_count`: res = 2, then the
+/// next power of two above res while res² < n); `stratified` the square of ⌈√n⌉.
+fn mitsuba_sample_count(sampler: &str, n: u32) -> u32 {
+    let n = u64::from(n);
+    let rounded = match sampler {
+        "ldsampler" => {
+            let mut res = 2u64;
+            while res * res < n {
+                res = (res + 1).next_power_of_two();
+            }
+            res * res
+        }
+        "stratified" => {
+            let mut res = (n as f64).sqrt() as u64;
+            while res * res < n {
+                res += 1;
+            }
+            res * res
+        }
+        _ => n,
+    };
+    u32::try_from(rounded).unwrap_or(u32::MAX)
+}
+
 /// `<rfilter type="name">` with one parameter.
 fn rfilter(x: &mut String, name: &str, param: &str, value: f32) {
     let _ = writeln!(x, "            <rfilter type=\"{name}\">");
     float(x, 4, param, value);
     x.push_str("            </rfilter>\n");
+}
+
+#[cfg(test)]
+mod tests {
+    use super::mitsuba_sample_count;
+
+    #[test]
+    fn mitsuba_rounds_sample_counts_as_its_samplers_do() {
+        let ld = [
+            (1, 4),
+            (2, 4),
+            (4, 4),
+            (8, 16),
+            (16, 16),
+            (49, 64),
+            (128, 256),
+            (8192, 16384),
+        ];
+        for (n, m) in ld {
+            assert_eq!(mitsuba_sample_count("ldsampler", n), m, "ldsampler {n}");
+        }
+        for (n, m) in [(1, 1), (2, 4), (9, 9), (10, 16), (49, 49), (50, 64)] {
+            assert_eq!(mitsuba_sample_count("stratified", n), m, "stratified {n}");
+        }
+        assert_eq!(mitsuba_sample_count("independent", 7), 7);
+    }
 }
