@@ -28,7 +28,6 @@ second.
 import argparse
 import glob
 import os
-import re
 import statistics
 import subprocess
 import sys
@@ -117,15 +116,12 @@ def exported_builtins(exe):
     for line in listing.splitlines():
         name = line.split()[0].removeprefix("builtin:")
         xml = os.path.join(folder, name + ".xml")
-        r = subprocess.run([exe, "export", "builtin:" + name, "-o", xml], capture_output=True, text=True)
+        r = subprocess.run([exe, "export", "builtin:" + name, "-o", xml, "--sampler", "independent"],
+                           capture_output=True, text=True)
         notes = [l for l in r.stderr.splitlines() if l.startswith(("note:", "error:"))]
         if r.returncode != 0 or any("Mitsuba 3 will not read this file" in l for l in notes):
             print(f"skipped builtin:{name}: {'; '.join(notes)}", file=sys.stderr)
             continue
-        with open(xml) as f:
-            text = f.read()
-        with open(xml, "w") as f:
-            f.write(re.sub(r'<sampler type="\w+">', '<sampler type="independent">', text))
         files.append(xml)
     return files
 

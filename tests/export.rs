@@ -108,20 +108,26 @@ fn assert_same_scene(name: &str, scene: &Scene, back: &Scene, sampler: SamplerKi
         );
         match (&p.shape, &q.shape) {
             (Shape::Rectangle(r), Shape::Rectangle(s)) => {
-                assert!(
-                    close(r.o, s.o, scale) && close(r.normal, s.normal, 1.0),
-                    "{what}: {r:?} {s:?}"
-                );
+                let same = close(r.o, s.o, scale)
+                    && close(r.ea, s.ea, scale)
+                    && close(r.eb, s.eb, scale)
+                    && close(r.normal, s.normal, 1.0);
+                assert!(same, "{what}: {r:?} {s:?}");
             }
             (Shape::Sphere(r), Shape::Sphere(s)) => {
                 assert!(close(r.center, s.center, scale), "{what}");
                 assert!((r.radius - s.radius).abs() <= 1e-6 * r.radius, "{what}");
+                let (a, b) = (r.axes, s.axes);
+                let axes = close(a.s, b.s, 1.0) && close(a.t, b.t, 1.0) && close(a.n, b.n, 1.0);
+                assert!(axes, "{what}: sphere axes {a:?} {b:?}");
             }
             (Shape::Disk(r), Shape::Disk(s)) => {
-                assert!(
-                    close(r.center, s.center, scale) && close(r.normal, s.normal, 1.0),
-                    "{what}: {r:?} {s:?}"
-                );
+                let same = close(r.center, s.center, scale)
+                    && close(r.normal, s.normal, 1.0)
+                    && (r.radius - s.radius).abs() <= 1e-6 * r.radius
+                    && close(r.axes[0], s.axes[0], 1.0)
+                    && close(r.axes[1], s.axes[1], 1.0);
+                assert!(same, "{what}: {r:?} {s:?}");
             }
             (Shape::Triangle(r), Shape::Triangle(s)) => {
                 assert_eq!((r.p0, r.e1, r.e2), (s.p0, s.e1, s.e2), "{what}");
@@ -341,14 +347,34 @@ fn the_command_refuses_bad_outputs_and_textured_scenes() {
     let err = String::from_utf8_lossy(&out.stderr);
     let named = err.contains("textures_bitmap.xml: cannot export: material-0 is textured");
     assert!(named, "{err}");
-    let ok = dir.join("m.xml");
-    let out = run(&["builtin:sphere-near-plane", "-o", ok.to_str().unwrap()]);
+    // A bare file name: written in the working folder, meshes beside it.
+    let out = Command::new(env!("CARGO_BIN_EXE_lightlab"))
+        .args(["export", "builtin:sphere-near-plane", "-o", "m.xml"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
     assert_eq!(out.status.code(), Some(0));
     let listed = String::from_utf8_lossy(&out.stdout);
     assert!(
         listed.contains("m_mesh0.ply") && listed.contains("m.xml"),
         "{listed}"
     );
-    assert!(dir.join("m_mesh0.ply").exists() && ok.exists());
+    assert!(dir.join("m_mesh0.ply").exists() && dir.join("m.xml").exists());
+    let read = load(dir.join("m.xml").to_str().unwrap());
+    assert!(read.is_ok(), "{:?}", read.err());
+    // Size, samples and sampler as a render takes them (height from the aspect).
+    let sized = dir.join("sized.xml");
+    let sized_arg = sized.to_str().unwrap();
+    let flags = ["--width", "96", "--spp", "8", "--sampler", "independent"];
+    let out = run(&[&["builtin:sphere-near-plane", "-o", sized_arg][..], &flags].concat());
+    assert_eq!(out.status.code(), Some(0));
+    let back = load(sized_arg).unwrap();
+    assert_eq!(
+        (back.camera.width, back.camera.height, back.spp),
+        (96, 64, 8)
+    );
+    assert_eq!(back.requested.sampler, Some(SamplerKind::Independent));
+    let out = run(&["builtin:materials", "-o", sized_arg, "--width", "0"]);
+    assert_eq!(out.status.code(), Some(2));
     std::fs::remove_dir_all(&dir).unwrap();
 }

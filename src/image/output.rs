@@ -54,7 +54,7 @@ fn alive(pid: u32) -> bool {
 }
 
 /// Removes temporaries of `path` left by processes that no longer run.
-pub(crate) fn remove_stale(path: &Path, file_name: &str) {
+fn remove_stale(path: &Path, file_name: &str) {
     let prefix = format!(".{file_name}.tmp-");
     let folder = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,
@@ -98,6 +98,39 @@ pub fn write_atomically(
         let _ = fs::remove_file(&tmp);
         e.to_string()
     })
+}
+
+/// Writes several files that belong together (a scene file and the files it names):
+/// each to its temporary sibling (stale temporaries removed first), then all renamed into
+/// place in order, the last one last. When a write fails, the temporaries are removed and
+/// nothing is replaced; when a rename fails, the files renamed before it may already be
+/// new, but the later ones (the last included) are still the old ones.
+pub fn write_all_atomically(files: &[(PathBuf, &[u8])]) -> Result<(), String> {
+    let pid = std::process::id();
+    let mut named = Vec::with_capacity(files.len());
+    for (path, bytes) in files {
+        let file_name = path
+            .file_name()
+            .ok_or_else(|| format!("{}: not a file path", path.display()))?
+            .to_string_lossy()
+            .into_owned();
+        remove_stale(path, &file_name);
+        named.push((path, temporary(path, &file_name, pid), *bytes));
+    }
+    let written = named.iter().try_for_each(|(path, tmp, bytes)| {
+        fs::write(tmp, bytes).map_err(|e| format!("{}: {e}", path.display()))
+    });
+    let renamed = written.and_then(|()| {
+        named.iter().try_for_each(|(path, tmp, _)| {
+            fs::rename(tmp, path).map_err(|e| format!("{}: {e}", path.display()))
+        })
+    });
+    if renamed.is_err() {
+        for (_, tmp, _) in &named {
+            let _ = fs::remove_file(tmp);
+        }
+    }
+    renamed
 }
 
 #[cfg(test)]

@@ -52,17 +52,13 @@ def main():
     ap.add_argument("--lightlab", default=os.path.join(ROOT, "target", "release", "lightlab"))
     a = ap.parse_args()
     folder = tempfile.mkdtemp(prefix="lightlab-grazing-")
-    xml = os.path.join(folder, "rect.xml")
-    subprocess.run([a.lightlab, "export", "builtin:sphere-near-plane?emitters=rectangle", "-o", xml],
-                   check=True, capture_output=True)
-    text = open(xml).read()
-    text = re.sub(r'name="width" value="\d+"', 'name="width" value="96"', text)
-    text = re.sub(r'name="height" value="\d+"', 'name="height" value="64"', text)
     files = {}
-    for sampler in ("ldsampler", "independent"):
+    for sampler, flag in (("ldsampler", "sobol"), ("independent", "independent")):
         files[sampler] = os.path.join(folder, sampler + ".xml")
-        with open(files[sampler], "w") as f:
-            f.write(re.sub(r'<sampler type="\w+">', f'<sampler type="{sampler}">', text))
+        subprocess.run([a.lightlab, "export", "builtin:sphere-near-plane?emitters=rectangle", "-o",
+                        files[sampler], "--width", "96", "--height", "64", "--sampler", flag],
+                       check=True, capture_output=True)
+    text = open(files["independent"]).read()
     # The light: Mitsuba's rectangle [-1, 1]^2 under the exported to_world.
     rows = re.search(r'<shape type="rectangle">\s*<transform name="to_world">\s*<matrix value="[^"]*"/>'
                      r'.*?<shape type="rectangle">\s*<transform name="to_world">\s*<matrix value="([^"]*)"',

@@ -42,7 +42,7 @@ use super::Scene;
 use crate::bsdf::Material;
 use crate::geometry::{NO_LIGHT, Primitive, Shape};
 use crate::image::io::pfm_bytes;
-use crate::image::output::remove_stale;
+use crate::image::output::write_all_atomically;
 use crate::light::Light;
 use crate::light::environment::EnvironmentSource;
 use crate::math::Spectrum;
@@ -65,8 +65,8 @@ pub struct Exported {
 
 /// Writes `scene` as the Mitsuba 3 XML file `xml` (its meshes and environment map as
 /// files beside it, named after it). Nothing is written when the scene cannot be
-/// expressed; the files are written to temporaries first and renamed into place only
-/// when all of them are whole.
+/// expressed; the files are written to temporaries first and renamed into place, the
+/// XML file last, only when all of them are whole ([`write_all_atomically`]).
 pub fn export(scene: &Scene, xml: &Path) -> Result<Exported, String> {
     check_output(xml)?;
     let stem = xml
@@ -82,7 +82,7 @@ pub fn export(scene: &Scene, xml: &Path) -> Result<Exported, String> {
         .map(|(name, bytes)| (dir.join(name), bytes.as_slice()))
         .collect();
     files.push((xml.to_path_buf(), plan.xml.as_bytes()));
-    write_all(&files)?;
+    write_all_atomically(&files)?;
     Ok(Exported {
         files: files.into_iter().map(|(path, _)| path).collect(),
         notes: plan.notes,
@@ -106,36 +106,6 @@ pub fn check_output(xml: &Path) -> Result<(), String> {
         )),
         _ => Ok(()),
     }
-}
-
-/// Writes every file to a temporary sibling (removing temporaries that killed runs left),
-/// then renames them into place, the XML file last: when a write fails, the temporaries
-/// are removed and nothing is replaced; when a rename fails, side files renamed before it
-/// may already be new, but the XML file is still the old one.
-fn write_all(files: &[(PathBuf, &[u8])]) -> Result<(), String> {
-    let temporary = |path: &Path| {
-        let name = path.file_name().unwrap_or_default().to_string_lossy();
-        path.with_file_name(format!(".{name}.tmp-{}", std::process::id()))
-    };
-    let mut written = Vec::new();
-    let result = files.iter().try_for_each(|(path, bytes)| {
-        let name = path.file_name().unwrap_or_default().to_string_lossy();
-        remove_stale(path, &name);
-        let tmp = temporary(path);
-        written.push(tmp.clone());
-        std::fs::write(&tmp, bytes).map_err(|e| format!("{}: {e}", path.display()))
-    });
-    let result = result.and_then(|()| {
-        files.iter().try_for_each(|(path, _)| {
-            std::fs::rename(temporary(path), path).map_err(|e| format!("{}: {e}", path.display()))
-        })
-    });
-    if result.is_err() {
-        for tmp in written {
-            let _ = std::fs::remove_file(tmp);
-        }
-    }
-    result
 }
 
 /// The XML text and the side files (name beside the XML file, contents), made before
@@ -164,11 +134,7 @@ impl Plan {
                 "{UNREADABLE}`phong` is Mitsuba 0.6's plugin (lightlab reads it)"
             ));
         }
-        let polygons = scene
-            .lights
-            .iter()
-            .filter(|l| matches!(l, Light::Polygon(_)));
-        if polygons.count() > 0 {
+        if scene.lights.iter().any(|l| matches!(l, Light::Polygon(_))) {
             plan.notes.push(
                 "each polygon light is written as the mesh of its triangulation: read back, \
                  one light per triangle (the same emission, sampled triangle by triangle)"
