@@ -55,7 +55,14 @@ pub(super) fn read_pfm(path: &Path) -> Result<LoadedImage, ImageError> {
     };
     let w: u32 = tokens[1].parse().map_err(|_| bad("bad PFM width"))?;
     let h: u32 = tokens[2].parse().map_err(|_| bad("bad PFM height"))?;
-    let scale: f32 = tokens[3].parse().map_err(|_| bad("bad PFM scale"))?;
+    // The scale's sign gives the byte order; its magnitude multiplies every value (as
+    // Mitsuba 3 and tev read it), so a map stored as v/s with scale ±s reads back as v.
+    let scale: f32 = tokens[3]
+        .parse()
+        .ok()
+        .filter(|s: &f32| s.is_finite() && *s != 0.0)
+        .ok_or_else(|| bad("bad PFM scale (a finite, non-zero number is needed)"))?;
+    let magnitude = scale.abs();
     // Checked against the file's bytes before anything is allocated.
     let pixels = w as u64 * h as u64;
     let n = (pixels * channels as u64) as usize;
@@ -72,11 +79,12 @@ pub(super) fn read_pfm(path: &Path) -> Result<LoadedImage, ImageError> {
             data[4 * i + 2],
             data[4 * i + 3],
         ];
-        if scale < 0.0 {
-            f32::from_le_bytes(b)
-        } else {
-            f32::from_be_bytes(b)
-        }
+        magnitude
+            * if scale < 0.0 {
+                f32::from_le_bytes(b)
+            } else {
+                f32::from_be_bytes(b)
+            }
     };
     let mut rgb = vec![Spectrum::ZERO; pixels as usize];
     for y in 0..h as usize {
@@ -90,4 +98,47 @@ pub(super) fn read_pfm(path: &Path) -> Result<LoadedImage, ImageError> {
         }
     }
     Ok(LoadedImage::rgb_only(w, h, rgb))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn read_bytes(name: &str, bytes: &[u8]) -> Result<LoadedImage, ImageError> {
+        let dir = std::env::temp_dir().join(format!("lightlab-pfm-{}", std::process::id()));
+        fs::create_dir_all(&dir).unwrap();
+        let path = dir.join(name);
+        fs::write(&path, bytes).unwrap();
+        let read = read_pfm(&path);
+        let _ = fs::remove_file(path);
+        read
+    }
+
+    /// The scale's magnitude multiplies the values, its sign picks the byte order: one
+    /// pixel (1, 2, 3) stored under scales ±2.5 reads (2.5, 5, 7.5), as Mitsuba 3 reads it.
+    #[test]
+    fn scale_multiplies_and_sign_gives_byte_order() {
+        let values = [1.0f32, 2.0, 3.0];
+        let mut little = b"PF\n1 1\n-2.5\n".to_vec();
+        let mut big = b"PF\n1 1\n2.5\n".to_vec();
+        for v in values {
+            little.extend_from_slice(&v.to_le_bytes());
+            big.extend_from_slice(&v.to_be_bytes());
+        }
+        let want = Spectrum::new(2.5, 5.0, 7.5);
+        assert_eq!(read_bytes("le.pfm", &little).unwrap().rgb, vec![want]);
+        assert_eq!(read_bytes("be.pfm", &big).unwrap().rgb, vec![want]);
+        let mut grey = b"Pf\n1 1\n-4\n".to_vec();
+        grey.extend_from_slice(&0.5f32.to_le_bytes());
+        assert_eq!(
+            read_bytes("g.pfm", &grey).unwrap().rgb,
+            vec![Spectrum::splat(2.0)]
+        );
+        for scale in ["0", "-0.0", "nan", "inf"] {
+            let mut bad = format!("Pf\n1 1\n{scale}\n").into_bytes();
+            bad.extend_from_slice(&0.5f32.to_le_bytes());
+            let err = read_bytes("bad.pfm", &bad).unwrap_err().to_string();
+            assert!(err.contains("bad PFM scale"), "{scale}: {err}");
+        }
+    }
 }
