@@ -8,7 +8,9 @@
 //! shading point almost on the triangle, where its vertices are nearly coplanar with it).
 //! The choice depends only on the shading point, so `sample` and `pdf` agree on it. With
 //! the render's fast paths on (the default), `solid-angle` uses the same map without libm
-//! trigonometry ([`FastSphericalTriangle`]), under the same fall-backs.
+//! trigonometry ([`FastSphericalTriangle`]), under the same fall-backs and one more: a
+//! triangle small for its distance ([`SMALL_RATIO`]) is sampled by area, which leaves about
+//! the same error there for less work.
 //! `projected-solid-angle` draws ∝ cos θ over the part above the horizon (the
 //! `projected` module).
 
@@ -19,6 +21,16 @@ use crate::geometry::shape::Triangle;
 use crate::light::ShadingPoint;
 use crate::math::PI;
 use crate::sampling::warp::{FastSphericalTriangle, SphericalTriangle, square_to_triangle_fold};
+
+/// On the fast path a triangle is sampled by area where it is small for its distance: the
+/// ball of radius r = max(|e₁|, |e₂|) about its vertex p₀ holds it, and r² ≤ `SMALL_RATIO`·d²
+/// (d = |x − p₀|, so r/d ≤ 0.1: within a cone of half-angle 5.7°, Ω ≤ 0.032 sr). There the
+/// area estimate's factor cos θ_y·A/d² varies over the triangle by O(r/d), as much as the
+/// receiver's cos θ_x, which solid-angle sampling leaves too: the two strategies leave
+/// about the same error, and area costs less (pbrt-v4 takes area below Ω = 3·10⁻⁴; this
+/// bound is ten times wider in angle). On `mesh_ply_serialized` (a ball of 256 emitting
+/// triangles): 1.22× the speed, relMSE within 0.3 % at 64 spp (BENCHMARKS.md, session 21).
+pub const SMALL_RATIO: f32 = 1e-2;
 
 /// Spherical triangles above this fraction of 2π are sampled by area instead.
 pub const MAX_SOLID_ANGLE_FRACTION: f32 = 0.999;
@@ -74,9 +86,14 @@ pub(super) fn sample_area(t: &Triangle, u: Vec2) -> (Vec3, Vec3) {
 }
 
 /// The fast path's spherical triangle of `t` seen from `at`, under the same conditions as
-/// [`safe_spherical_triangle`].
+/// [`safe_spherical_triangle`], and `None` (area sampling) where `t` is small for its
+/// distance ([`SMALL_RATIO`]).
 #[inline]
 fn fast_spherical(t: &Triangle, at: &ShadingPoint) -> Option<FastSphericalTriangle> {
+    let r2 = t.e1.length_squared().max(t.e2.length_squared());
+    if r2 <= SMALL_RATIO * (at.p - t.p0).length_squared() {
+        return None;
+    }
     let [p0, p1, p2] = t.vertices();
     FastSphericalTriangle::new(at.p, p0, p1, p2)
         .filter(|st| st.solid_angle() <= MAX_SOLID_ANGLE_FRACTION * 2.0 * PI)
@@ -150,5 +167,64 @@ pub(super) fn pdf(
         Some((st, None)) => 1.0 / st.solid_angle(),
         Some((st, weights)) => cosine_warp::pdf(&st, weights, (y - at.p).normalize()),
         None => uniform_area_pdf(at.p, y, ny, t.area()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The fast path samples a triangle by solid angle while r² > [`SMALL_RATIO`]·d² and by
+    /// area beyond; `sample` and `pdf` agree on either side, and the plain path keeps
+    /// solid angle. Solid angle's density is the same at every point of the triangle,
+    /// area's (d²/(A cos θ_y)) is not, which tells the two apart.
+    #[test]
+    fn small_far_triangles_are_sampled_by_area_on_the_fast_path() {
+        let t = Triangle {
+            p0: Vec3::new(-0.5, -0.4, 1.0),
+            e1: Vec3::new(0.2, 1.0, 0.0),
+            e2: Vec3::new(1.0, 0.1, 0.0),
+            mesh: 0,
+            index: 0,
+        };
+        let r2 = t.e1.length_squared().max(t.e2.length_squared());
+        // Points below the triangle (its normal is −z), offset a little from p₀.
+        let below = |ratio: f32| {
+            let d = (r2 / ratio).sqrt();
+            let p = t.p0 - Vec3::new(0.0, 0.0, d) + Vec3::new(0.3, 0.2, 0.0);
+            ShadingPoint {
+                p,
+                ng: Vec3::Z,
+                n: Vec3::Z,
+            }
+        };
+        assert!(t.normal().z < 0.0, "the triangle faces the points below it");
+        let us = [
+            Vec2::new(0.1, 0.2),
+            Vec2::new(0.8, 0.7),
+            Vec2::new(0.45, 0.95),
+        ];
+        let pdfs = |at: &ShadingPoint, fast: bool| -> Vec<f32> {
+            us.iter()
+                .map(|&u| {
+                    let s = sample(&t, LightSampling::SolidAngle, fast, at, u).expect("sample");
+                    let p = pdf(&t, LightSampling::SolidAngle, fast, at, s.y, s.ny);
+                    assert!((p - s.pdf).abs() <= 1e-5 * p, "sample {} vs pdf {p}", s.pdf);
+                    p
+                })
+                .collect()
+        };
+        let constant = |v: &[f32]| v.iter().all(|p| (p - v[0]).abs() <= 1e-5 * v[0]);
+        let near = below(1.2 * SMALL_RATIO);
+        let far = below(0.8 * SMALL_RATIO);
+        assert!(constant(&pdfs(&near, true)), "solid angle above the ratio");
+        assert!(
+            !constant(&pdfs(&far, true)),
+            "area below it on the fast path"
+        );
+        assert!(
+            constant(&pdfs(&far, false)),
+            "solid angle on the plain path"
+        );
     }
 }
