@@ -140,6 +140,7 @@ fn generate(dir: &Path, scenes: &Path) {
         ),
         ("short.pfm", b"PF\n4 4\n-1.0\n\0\0\0\0\0\0\0\0\0\0".to_vec()),
         ("zero-size.pfm", b"PF\n0 4\n-1.0\n".to_vec()),
+        ("zero-scale.pfm", b"Pf\n1 1\n0\n\0\0\0\0".to_vec()),
         ("huge.serialized", serialized(1 << 40, 1 << 40)),
         ("truncated.serialized", original[..24].to_vec()),
         ("huge-binary.ply", binary_ply(4_000_000_000)),

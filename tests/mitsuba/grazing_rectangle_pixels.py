@@ -5,6 +5,7 @@ lightlab, all on the scene `lightlab export` writes (rectangle light only, 96 x 
 
     DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM-19.so \\
         python3 tests/mitsuba/grazing_rectangle_pixels.py [--spp 16384] [--lightlab EXE]
+        (the default EXE is target/release/lightlab: run `cargo build --release` first)
 
 Needs mitsuba and numpy. Prints one row per pixel. The analytic value: 64 x 64 camera rays
 per pixel through Mitsuba's own sensor; a ray that meets the floor in front of the

@@ -1,4 +1,6 @@
-//! Portable float map (`.pfm`): little-endian float RGB, rows bottom to top.
+//! Portable float map (`.pfm`): float RGB (`PF`) or grey (`Pf`), rows bottom to top; the
+//! header's scale gives the byte order by its sign (negative: little-endian) and
+//! multiplies every value by its magnitude. Written little-endian with scale −1.
 
 use std::fs;
 use std::path::Path;
@@ -61,7 +63,12 @@ pub(super) fn read_pfm(path: &Path) -> Result<LoadedImage, ImageError> {
         .parse()
         .ok()
         .filter(|s: &f32| s.is_finite() && *s != 0.0)
-        .ok_or_else(|| bad("bad PFM scale (a finite, non-zero number is needed)"))?;
+        .ok_or_else(|| {
+            bad(&format!(
+                "bad PFM scale \"{}\" (a finite, non-zero number is needed)",
+                tokens[3]
+            ))
+        })?;
     let magnitude = scale.abs();
     // Checked against the file's bytes before anything is allocated.
     let pixels = w as u64 * h as u64;
@@ -111,6 +118,7 @@ mod tests {
         fs::write(&path, bytes).unwrap();
         let read = read_pfm(&path);
         let _ = fs::remove_file(path);
+        let _ = fs::remove_dir(dir);
         read
     }
 

@@ -173,7 +173,10 @@ impl AreaLight {
             }
             (Shape::Sphere(s), _) => sphere::sample(s, strategy, at, u)?,
             (Shape::Rectangle(r), _) => rectangle::sample(r, strategy, render.fast_paths, at, u)?,
-            (Shape::Triangle(t), _) => triangle::sample(t, strategy, render.fast_paths, at, u)?,
+            (Shape::Triangle(t), _) => {
+                let best = render.sampling == LightSampling::Best;
+                triangle::sample(t, (strategy, best), render.fast_paths, at, u)?
+            }
             (Shape::Disk(d), _) => disk::sample(d, strategy, at, u)?,
         };
         let y = point.y;
@@ -200,7 +203,10 @@ impl AreaLight {
         match &self.shape {
             Shape::Sphere(s) => sphere::pdf(s, strategy, at, y, ny),
             Shape::Rectangle(r) => rectangle::pdf(r, strategy, render.fast_paths, at, y, ny),
-            Shape::Triangle(t) => triangle::pdf(t, strategy, render.fast_paths, at, y, ny),
+            Shape::Triangle(t) => {
+                let best = render.sampling == LightSampling::Best;
+                triangle::pdf(t, (strategy, best), render.fast_paths, at, y, ny)
+            }
             Shape::Disk(d) => disk::pdf(d, strategy, at, y, ny),
         }
     }

@@ -8,9 +8,10 @@
 //! shading point almost on the triangle, where its vertices are nearly coplanar with it).
 //! The choice depends only on the shading point, so `sample` and `pdf` agree on it. With
 //! the render's fast paths on (the default), `solid-angle` uses the same map without libm
-//! trigonometry ([`FastSphericalTriangle`]), under the same fall-backs and one more: a
-//! triangle small for its distance ([`SMALL_RATIO`]) is sampled by area, which leaves about
-//! the same error there for less work.
+//! trigonometry ([`FastSphericalTriangle`]), under the same fall-backs. Under `best`
+//! (`small_by_area`), a triangle small for its distance ([`SMALL_RATIO`]) is sampled by
+//! area, which leaves about the same error there for less work; an explicit
+//! `solid-angle` keeps solid angle.
 //! `projected-solid-angle` draws ∝ cos θ over the part above the horizon (the
 //! `projected` module).
 
@@ -22,15 +23,23 @@ use crate::light::ShadingPoint;
 use crate::math::PI;
 use crate::sampling::warp::{FastSphericalTriangle, SphericalTriangle, square_to_triangle_fold};
 
-/// On the fast path a triangle is sampled by area where it is small for its distance: the
+/// Under `best` a triangle is sampled by area where it is small for its distance: the
 /// ball of radius r = max(|e₁|, |e₂|) about its vertex p₀ holds it, and r² ≤ `SMALL_RATIO`·d²
 /// (d = |x − p₀|, so r/d ≤ 0.1: within a cone of half-angle 5.7°, Ω ≤ 0.032 sr). There the
-/// area estimate's factor cos θ_y·A/d² varies over the triangle by O(r/d), as much as the
-/// receiver's cos θ_x, which solid-angle sampling leaves too: the two strategies leave
-/// about the same error, and area costs less (pbrt-v4 takes area below Ω = 3·10⁻⁴; this
-/// bound is ten times wider in angle). On `mesh_ply_serialized` (a ball of 256 emitting
-/// triangles): 1.22× the speed, relMSE within 0.3 % at 64 spp (BENCHMARKS.md, session 21).
+/// area estimate's factor cos θ_y·A/d² varies over the triangle by O(r/d) (relatively more
+/// at grazing angles, where little light comes from), as much as the receiver's cos θ_x,
+/// which solid-angle sampling leaves too: the two strategies leave about the same error,
+/// and area costs less (pbrt-v4 takes area below Ω = 3·10⁻⁴ sr; this bound is ten times
+/// wider in angle). On `mesh_ply_serialized` (a ball of 256 emitting triangles): 1.21× the
+/// speed, relMSE within 0.4 % at 64 spp (BENCHMARKS.md, session 21).
 pub const SMALL_RATIO: f32 = 1e-2;
+
+/// Whether `t` is small for its distance from `at` ([`SMALL_RATIO`]).
+#[inline]
+fn small_for_its_distance(t: &Triangle, at: &ShadingPoint) -> bool {
+    let r2 = t.e1.length_squared().max(t.e2.length_squared());
+    r2 <= SMALL_RATIO * (at.p - t.p0).length_squared()
+}
 
 /// Spherical triangles above this fraction of 2π are sampled by area instead.
 pub const MAX_SOLID_ANGLE_FRACTION: f32 = 0.999;
@@ -86,25 +95,38 @@ pub(super) fn sample_area(t: &Triangle, u: Vec2) -> (Vec3, Vec3) {
 }
 
 /// The fast path's spherical triangle of `t` seen from `at`, under the same conditions as
-/// [`safe_spherical_triangle`], and `None` (area sampling) where `t` is small for its
-/// distance ([`SMALL_RATIO`]).
+/// [`safe_spherical_triangle`].
 #[inline]
 fn fast_spherical(t: &Triangle, at: &ShadingPoint) -> Option<FastSphericalTriangle> {
-    let r2 = t.e1.length_squared().max(t.e2.length_squared());
-    if r2 <= SMALL_RATIO * (at.p - t.p0).length_squared() {
-        return None;
-    }
     let [p0, p1, p2] = t.vertices();
     FastSphericalTriangle::new(at.p, p0, p1, p2)
         .filter(|st| st.solid_angle() <= MAX_SOLID_ANGLE_FRACTION * 2.0 * PI)
 }
 
+/// What [`sample`] and [`pdf`] run, given the resolved strategy and whether it came
+/// from `best` (`small_by_area`): `area` in place of `solid-angle` where `best` asked for
+/// it and `t` is small for its distance from `at`.
+#[inline]
+fn running(
+    t: &Triangle,
+    strategy: LightSampling,
+    small_by_area: bool,
+    at: &ShadingPoint,
+) -> LightSampling {
+    if small_by_area && strategy == LightSampling::SolidAngle && small_for_its_distance(t, at) {
+        LightSampling::Area
+    } else {
+        strategy
+    }
+}
+
 /// Draws a point of `t` with `strategy` (resolved: `area`, `solid-angle` or
-/// `solid-angle-cos`), `solid-angle` on the fast path when `fast`.
+/// `solid-angle-cos`; `area` where `small_by_area` and `t` is small for its distance),
+/// `solid-angle` on the fast path when `fast`.
 #[inline]
 pub(super) fn sample(
     t: &Triangle,
-    strategy: LightSampling,
+    (strategy, small_by_area): (LightSampling, bool),
     fast: bool,
     at: &ShadingPoint,
     u: Vec2,
@@ -112,6 +134,7 @@ pub(super) fn sample(
     if strategy == LightSampling::ProjectedSolidAngle {
         return projected::sample(t.vertices(), t.normal(), at, u);
     }
+    let strategy = running(t, strategy, small_by_area, at);
     let ny = t.normal();
     if fast && strategy == LightSampling::SolidAngle {
         if let Some(st) = fast_spherical(t, at) {
@@ -144,11 +167,11 @@ pub(super) fn sample(
 }
 
 /// Density per steradian at `at` of the direction towards `y` on `t`, for `sample` with
-/// the same `strategy` and `fast`.
+/// the same `strategy`, `small_by_area` and `fast`.
 #[inline]
 pub(super) fn pdf(
     t: &Triangle,
-    strategy: LightSampling,
+    (strategy, small_by_area): (LightSampling, bool),
     fast: bool,
     at: &ShadingPoint,
     y: Vec3,
@@ -157,6 +180,7 @@ pub(super) fn pdf(
     if strategy == LightSampling::ProjectedSolidAngle {
         return projected::pdf(t.vertices(), at, y);
     }
+    let strategy = running(t, strategy, small_by_area, at);
     if fast && strategy == LightSampling::SolidAngle {
         return match fast_spherical(t, at) {
             Some(st) => 1.0 / st.solid_angle(),
@@ -174,10 +198,11 @@ pub(super) fn pdf(
 mod tests {
     use super::*;
 
-    /// The fast path samples a triangle by solid angle while r² > [`SMALL_RATIO`]·d² and by
-    /// area beyond; `sample` and `pdf` agree on either side, and the plain path keeps
-    /// solid angle. Solid angle's density is the same at every point of the triangle,
-    /// area's (d²/(A cos θ_y)) is not, which tells the two apart.
+    /// `best` samples a triangle by solid angle while r² > [`SMALL_RATIO`]·d² and by area
+    /// beyond, on the fast path and the plain one; `sample` and `pdf` agree on either
+    /// side, and an explicit `solid-angle` keeps solid angle. Solid angle's density is
+    /// the same at every point of the triangle, area's (d²/(A cos θ_y)) is not, which
+    /// tells the two apart.
     #[test]
     fn small_far_triangles_are_sampled_by_area_on_the_fast_path() {
         let t = Triangle {
@@ -204,11 +229,12 @@ mod tests {
             Vec2::new(0.8, 0.7),
             Vec2::new(0.45, 0.95),
         ];
-        let pdfs = |at: &ShadingPoint, fast: bool| -> Vec<f32> {
+        let pdfs = |at: &ShadingPoint, best: bool, fast: bool| -> Vec<f32> {
+            let strategy = (LightSampling::SolidAngle, best);
             us.iter()
                 .map(|&u| {
-                    let s = sample(&t, LightSampling::SolidAngle, fast, at, u).expect("sample");
-                    let p = pdf(&t, LightSampling::SolidAngle, fast, at, s.y, s.ny);
+                    let s = sample(&t, strategy, fast, at, u).expect("sample");
+                    let p = pdf(&t, strategy, fast, at, s.y, s.ny);
                     assert!((p - s.pdf).abs() <= 1e-5 * p, "sample {} vs pdf {p}", s.pdf);
                     p
                 })
@@ -217,14 +243,16 @@ mod tests {
         let constant = |v: &[f32]| v.iter().all(|p| (p - v[0]).abs() <= 1e-5 * v[0]);
         let near = below(1.2 * SMALL_RATIO);
         let far = below(0.8 * SMALL_RATIO);
-        assert!(constant(&pdfs(&near, true)), "solid angle above the ratio");
-        assert!(
-            !constant(&pdfs(&far, true)),
-            "area below it on the fast path"
-        );
-        assert!(
-            constant(&pdfs(&far, false)),
-            "solid angle on the plain path"
-        );
+        for fast in [true, false] {
+            assert!(
+                constant(&pdfs(&near, true, fast)),
+                "best: solid angle above the ratio"
+            );
+            assert!(!constant(&pdfs(&far, true, fast)), "best: area below it");
+            assert!(
+                constant(&pdfs(&far, false, fast)),
+                "solid-angle asked for: kept"
+            );
+        }
     }
 }
