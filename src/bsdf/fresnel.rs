@@ -2,6 +2,8 @@
 //! η + ik per RGB channel), plus the hemispherical average of the dielectric one.
 //! Unpolarised light throughout (the mean of the s and p reflectances).
 
+use glam::Vec4;
+
 use crate::math::Spectrum;
 
 /// Unpolarised Fresnel reflectance of a dielectric interface with relative index
@@ -33,26 +35,30 @@ pub fn fresnel_dielectric(cos_theta_i: f32, eta: f32) -> f32 {
 /// η + ik per channel, at cos θ_i = `cos_theta_i` ≥ 0 (the closed form of
 /// K. D. Moeller, "Optics", 1988, as Mitsuba 3's `fresnel_conductor` uses it).
 /// η = 0, k = 1 gives 1 at every angle: Mitsuba's material "none".
+///
+/// The three channels run in the lanes of one vector (the fourth repeats the first): the
+/// operations of the one-channel formula (`conductor_channel` in the tests, which the
+/// lanes match bit for bit) in the same order, one square root and division per step
+/// for all channels instead of three.
 pub fn fresnel_conductor(cos_theta_i: f32, eta: Spectrum, k: Spectrum) -> Spectrum {
     let c = cos_theta_i.clamp(0.0, 1.0);
-    Spectrum::new(
-        conductor_channel(c, eta.x, k.x),
-        conductor_channel(c, eta.y, k.y),
-        conductor_channel(c, eta.z, k.z),
-    )
+    let lanes = |v: Spectrum| Vec4::new(v.x, v.y, v.z, v.x);
+    let r = conductor_lanes(c, lanes(eta), lanes(k));
+    Spectrum::new(r.x, r.y, r.z)
 }
 
-/// One channel of [`fresnel_conductor`]: with a² + b² = |η̂² − sin²θ| and
-/// a = √((|η̂² − sin²θ| + Re(η̂² − sin²θ))/2),
+/// With a² + b² = |η̂² − sin²θ| and a = √((|η̂² − sin²θ| + Re(η̂² − sin²θ))/2),
 /// R_s = (a² + b² + cos²θ − 2a cos θ)/(a² + b² + cos²θ + 2a cos θ),
-/// R_p = R_s ((a² + b²) cos²θ + sin⁴θ − 2a cos θ sin²θ)/((a² + b²) cos²θ + sin⁴θ + 2a cos θ sin²θ).
-fn conductor_channel(cos: f32, eta: f32, k: f32) -> f32 {
+/// R_p = R_s ((a² + b²) cos²θ + sin⁴θ − 2a cos θ sin²θ)/((a² + b²) cos²θ + sin⁴θ + 2a cos θ sin²θ),
+/// R = (R_s + R_p)/2 per lane.
+#[inline]
+fn conductor_lanes(cos: f32, eta: Vec4, k: Vec4) -> Vec4 {
     let cos2 = cos * cos;
     let sin2 = 1.0 - cos2;
     let sin4 = sin2 * sin2;
     let t1 = eta * eta - k * k - sin2;
-    let a2_plus_b2 = (t1 * t1 + 4.0 * k * k * eta * eta).max(0.0).sqrt();
-    let a = (0.5 * (a2_plus_b2 + t1)).max(0.0).sqrt();
+    let a2_plus_b2 = (t1 * t1 + 4.0 * k * k * eta * eta).max(Vec4::ZERO).sqrt();
+    let a = (0.5 * (a2_plus_b2 + t1)).max(Vec4::ZERO).sqrt();
     let term1 = a2_plus_b2 + cos2;
     let term2 = 2.0 * cos * a;
     let r_s = (term1 - term2) / (term1 + term2);
@@ -61,11 +67,11 @@ fn conductor_channel(cos: f32, eta: f32, k: f32) -> f32 {
     let r_p = r_s * (term3 - term4) / (term3 + term4);
     let r = 0.5 * (r_s + r_p);
     // 0/0 only at grazing incidence on an index-matched conductor: reflect fully.
-    if r.is_finite() {
-        r.clamp(0.0, 1.0)
-    } else {
-        1.0
-    }
+    Vec4::select(
+        r.is_finite_mask(),
+        r.clamp(Vec4::ZERO, Vec4::ONE),
+        Vec4::ONE,
+    )
 }
 
 /// Hemispherical average 2∫ F(cos θ) cos θ d(cos θ) of [`fresnel_dielectric`] for
@@ -100,6 +106,51 @@ mod tests {
         assert!((r - 0.5 * (5.0f32 / 13.0).powi(2)).abs() < 1e-5, "{r}");
         assert_eq!(fresnel_dielectric(0.0, 1.5), 1.0);
         assert_eq!(fresnel_dielectric(0.3, 1.0), 0.0);
+    }
+
+    /// One channel of [`fresnel_conductor`], the formula as written (see
+    /// `conductor_lanes`).
+    fn conductor_channel(cos: f32, eta: f32, k: f32) -> f32 {
+        let cos2 = cos * cos;
+        let sin2 = 1.0 - cos2;
+        let sin4 = sin2 * sin2;
+        let t1 = eta * eta - k * k - sin2;
+        let a2_plus_b2 = (t1 * t1 + 4.0 * k * k * eta * eta).max(0.0).sqrt();
+        let a = (0.5 * (a2_plus_b2 + t1)).max(0.0).sqrt();
+        let term1 = a2_plus_b2 + cos2;
+        let term2 = 2.0 * cos * a;
+        let r_s = (term1 - term2) / (term1 + term2);
+        let term3 = a2_plus_b2 * cos2 + sin4;
+        let term4 = term2 * sin2;
+        let r_p = r_s * (term3 - term4) / (term3 + term4);
+        let r = 0.5 * (r_s + r_p);
+        if r.is_finite() {
+            r.clamp(0.0, 1.0)
+        } else {
+            1.0
+        }
+    }
+
+    #[test]
+    fn lanes_match_the_one_channel_formula_bit_for_bit() {
+        let etas = [0.0f32, 0.05, 0.2, 0.9, 1.0, 1.5, 2.7, 40.0];
+        let ks = [0.0f32, 0.3, 1.0, 3.9, 7.5, 100.0];
+        let coss = [0.0f32, 1e-6, 0.01, 0.2, 0.5, 0.77, 0.999, 1.0];
+        for (i, &cos) in coss.iter().enumerate() {
+            for (j, &eta) in etas.iter().enumerate() {
+                for (l, &k) in ks.iter().enumerate() {
+                    // Each channel a different (η, k) pair, so a lane mix-up shows.
+                    let e =
+                        Spectrum::new(eta, etas[(j + 3) % etas.len()], etas[(j + i) % etas.len()]);
+                    let kk = Spectrum::new(k, ks[(l + 1) % ks.len()], ks[(l + 4) % ks.len()]);
+                    let got = fresnel_conductor(cos, e, kk);
+                    for c in 0..3 {
+                        let want = conductor_channel(cos, e[c], kk[c]);
+                        assert_eq!(got[c].to_bits(), want.to_bits(), "cos {cos} η {e} k {kk}");
+                    }
+                }
+            }
+        }
     }
 
     #[test]
