@@ -38,8 +38,8 @@ pub fn fresnel_dielectric(cos_theta_i: f32, eta: f32) -> f32 {
 ///
 /// The three channels run in the lanes of one vector (the fourth repeats the first): the
 /// operations of the one-channel formula (`conductor_channel` in the tests, which the
-/// lanes match bit for bit) in the same order, one square root and division per step
-/// for all channels instead of three.
+/// lanes match bit for bit) in the same order, one division per step for all channels
+/// instead of three (glam takes the square roots lane by lane).
 pub fn fresnel_conductor(cos_theta_i: f32, eta: Spectrum, k: Spectrum) -> Spectrum {
     let c = cos_theta_i.clamp(0.0, 1.0);
     let lanes = |v: Spectrum| Vec4::new(v.x, v.y, v.z, v.x);
@@ -66,7 +66,8 @@ fn conductor_lanes(cos: f32, eta: Vec4, k: Vec4) -> Vec4 {
     let term4 = term2 * sin2;
     let r_p = r_s * (term3 - term4) / (term3 + term4);
     let r = 0.5 * (r_s + r_p);
-    // 0/0 only at grazing incidence on an index-matched conductor: reflect fully.
+    // 0/0 only at grazing incidence on an index-matched conductor, or at normal
+    // incidence with η = k = 0: reflect fully.
     Vec4::select(
         r.is_finite_mask(),
         r.clamp(Vec4::ZERO, Vec4::ONE),
@@ -134,8 +135,8 @@ mod tests {
     #[test]
     fn lanes_match_the_one_channel_formula_bit_for_bit() {
         let etas = [0.0f32, 0.05, 0.2, 0.9, 1.0, 1.5, 2.7, 40.0];
-        let ks = [0.0f32, 0.3, 1.0, 3.9, 7.5, 100.0];
-        let coss = [0.0f32, 1e-6, 0.01, 0.2, 0.5, 0.77, 0.999, 1.0];
+        let ks = [0.0f32, 0.3, 1.0, 3.9, 7.5, 100.0, 1e20];
+        let coss = [-0.0f32, 0.0, 1e-23, 1e-6, 0.01, 0.2, 0.5, 0.77, 0.999, 1.0];
         for (i, &cos) in coss.iter().enumerate() {
             for (j, &eta) in etas.iter().enumerate() {
                 for (l, &k) in ks.iter().enumerate() {

@@ -204,7 +204,7 @@ mod tests {
     /// the same at every point of the triangle, area's (d²/(A cos θ_y)) is not, which
     /// tells the two apart.
     #[test]
-    fn small_far_triangles_are_sampled_by_area_on_the_fast_path() {
+    fn small_far_triangles_are_sampled_by_area_under_best() {
         let t = Triangle {
             p0: Vec3::new(-0.5, -0.4, 1.0),
             e1: Vec3::new(0.2, 1.0, 0.0),
