@@ -8,10 +8,10 @@ one machine: the ratio of samples per second, as issue 13 asks for.
 With no scene it takes every scene of tests/scenes/. --builtins adds (or, with no scene
 given, takes instead) each built-in scene written out as XML (`lightlab export`, its
 sampler set to `independent`) that Mitsuba 3 can read: those with Phong materials
-(Mitsuba 0.6's plugin, which Mitsuba 3 lacks) are listed as skipped. It installs what it needs itself: a
-virtual environment in target/bench-venv with mitsuba, embreex and numpy (PyPI), and it
-points DRJIT_LIBLLVM_PATH at Debian's libLLVM-19.so (`apt-get install libllvm19`) so that
-Mitsuba's vectorised llvm_ad_rgb variant runs. It builds lightlab in release mode first.
+(Mitsuba 0.6's plugin, which Mitsuba 3 lacks) are listed as skipped. It installs what it
+needs itself: a virtual environment in target/bench-venv with mitsuba, embreex and numpy
+(PyPI), and it points DRJIT_LIBLLVM_PATH at Debian's libLLVM-19.so (`apt-get install
+libllvm19`) so that Mitsuba's vectorised llvm_ad_rgb variant runs. It builds lightlab in release mode first.
 
 What is timed, per scene and configuration, interleaved over R rounds (the machine drifts
 over minutes, so every configuration sees the same drift), reported as medians:

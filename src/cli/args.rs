@@ -22,6 +22,19 @@ pub struct LabPatchArgs(pub RenderPatch);
 /// The flags of [`LabPatchArgs`].
 const LAB_FLAGS: [&str; 4] = [flag::WIDTH, flag::HEIGHT, flag::SEED, flag::SAMPLER];
 
+/// The render flags `export` writes into the file: film size, samples, sampler, seed.
+#[derive(Debug, Clone, Default)]
+pub struct ExportPatchArgs(pub RenderPatch);
+
+/// The flags of [`ExportPatchArgs`].
+const EXPORT_FLAGS: [&str; 5] = [
+    flag::WIDTH,
+    flag::HEIGHT,
+    flag::SPP,
+    flag::SAMPLER,
+    flag::SEED,
+];
+
 /// Adds the value flags `names` (and the compensation switch if `switch`) to `cmd`.
 fn augment(cmd: Command, names: &[&'static str], switch: bool) -> Command {
     let mut cmd = cmd;
@@ -114,6 +127,7 @@ fn all_flags() -> Vec<&'static str> {
 
 patch_args!(StrategyArgs, all_flags(), true);
 patch_args!(LabPatchArgs, LAB_FLAGS, false);
+patch_args!(ExportPatchArgs, EXPORT_FLAGS, false);
 
 impl StrategyArgs {
     /// The settings for `scene` with these flags laid over its defaults.

@@ -8,9 +8,8 @@ use std::path::PathBuf;
 use clap::Args;
 
 use super::CliError;
-use super::args::SceneFileArgs;
+use super::args::{ExportPatchArgs, SceneFileArgs};
 use crate::render::RenderSettings;
-use crate::sampling::SamplerKind;
 use crate::scene::export::{check_output, export};
 use crate::settings::RenderPatch;
 
@@ -25,22 +24,10 @@ pub struct ExportArgs {
     /// (`NAME_envmap.pfm`) go beside it.
     #[arg(short, long)]
     pub output: PathBuf,
-    /// Film width in the file (height follows the scene's aspect unless given).
-    #[arg(long)]
-    pub width: Option<u32>,
-    /// Film height in the file (width follows the scene's aspect unless given).
-    #[arg(long)]
-    pub height: Option<u32>,
-    /// Samples per pixel in the file.
-    #[arg(long)]
-    pub spp: Option<u32>,
-    /// Sampler the file asks for: independent, stratified, sobol (written as Mitsuba's
-    /// `ldsampler`).
-    #[arg(long)]
-    pub sampler: Option<SamplerKind>,
-    /// Seed the file's sampler asks for.
-    #[arg(long)]
-    pub seed: Option<u64>,
+    /// The film size, samples, sampler (`sobol` is written as Mitsuba's `ldsampler`)
+    /// and seed the file asks for, as the render flags of the same names.
+    #[command(flatten)]
+    pub settings: ExportPatchArgs,
 }
 
 /// Runs `export`: writes the files, lists them, and prints what Mitsuba 3 would read
@@ -50,20 +37,13 @@ pub fn run(args: &ExportArgs) -> Result<(), CliError> {
     let mut scene = args.file.load(&args.scene)?;
     // The flags go through the render settings, so they are checked and the size keeps
     // the aspect as in a render; only what they set changes.
-    let patch = RenderPatch {
-        width: args.width,
-        height: args.height,
-        spp: args.spp,
-        sampler: args.sampler,
-        seed: args.seed,
-        ..RenderPatch::default()
-    };
-    let settings = RenderSettings::build(&scene, &[&patch]).map_err(CliError::input)?;
+    let patch = &args.settings.0;
+    let settings = RenderSettings::build(&scene, &[patch]).map_err(CliError::input)?;
     scene.camera = settings.camera(&scene);
     scene.spp = settings.spp;
     scene.requested = scene.requested.then(&RenderPatch {
-        sampler: args.sampler,
-        seed: args.seed,
+        sampler: patch.sampler,
+        seed: patch.seed,
         ..RenderPatch::default()
     });
     let exported = export(&scene, &args.output)

@@ -15,8 +15,8 @@ make_meshes.py and are committed.
 With --builtins it makes refs/builtin_NAME.exr instead, for the built-in scenes of
 tests/xml_scenes.rs's BUILTIN_CASES: each is written out by `lightlab export` (the binary
 given by --lightlab, default target/release/lightlab: run `cargo build --release`
-first), its film set to the test's size
-and its sampler to `independent` (see exported_builtin), and rendered as above.
+first), its film set to the test's size and its sampler to `independent` (see
+exported_builtin), and rendered as above.
 
 The references in the repository: Mitsuba 3.9.1, llvm_ad_rgb, 8192 spp
 (DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM-19.so from Debian's libllvm19).
