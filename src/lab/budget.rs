@@ -13,7 +13,8 @@
 //! round asks for about a quarter of the time left at the speed measured so far, so the
 //! total converges to the budget from below; rounds stop when less than half a sample per
 //! pixel of time is left, or when a watcher thread signals the deadline (`render` then
-//! finishes its current internal round, an eighth of the call).
+//! finishes its current internal round: an eighth of the call, or about 10⁶ samples where
+//! that is more).
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
@@ -83,7 +84,7 @@ fn render_timed(
     let start = Instant::now();
     // A watcher raises `deadline` at the budget (or on an outside stop request), so a
     // round whose speed estimate was too optimistic still ends within one of `render`'s
-    // own rounds (an eighth of the call).
+    // own rounds (an eighth of the call, or about 10⁶ samples where that is more).
     let deadline = AtomicBool::new(false);
     let finished = AtomicBool::new(false);
     let millis = |d: Duration| d.as_millis() as u64;
@@ -154,7 +155,8 @@ fn rounds(
             break;
         }
         // A quarter of the time left, at least one spp: converges to the budget from
-        // below, and a round cut by the deadline overshoots by at most an eighth of it.
+        // below, and a round cut by the deadline overshoots by at most one of `render`'s
+        // rounds.
         spp_next = ((0.25 * left / per_spp).ceil() as u32).max(1);
     }
     total.expect("at least one round ran")

@@ -106,15 +106,17 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
     let tiles = tiles(w, h, tile_size(w, h));
     let invalid = AtomicU64::new(0);
     let start = Instant::now();
-    let rounds = round_boundaries(first, last);
+    // Optimal MIS learns its weights round by round (the first is the balance heuristic):
+    // it keeps its eight rounds.
+    let optimal_mis =
+        settings.estimator == EstimatorKind::Mis && settings.mis.heuristic == MisHeuristic::Optimal;
+    let rounds = round_boundaries(first, last, w as u64 * h as u64, optimal_mis);
     let total = (last - first) as u64 * (w * h) as u64;
     let mut done = first;
     let mut stopped = false;
     // Optimal MIS keeps per pixel the α of earlier rounds and the moments of all samples
     // (each pixel's samples run on one thread at a time: the locks are uncontended).
-    let optimal: Vec<Mutex<OptimalPixel>> = if settings.estimator == EstimatorKind::Mis
-        && settings.mis.heuristic == MisHeuristic::Optimal
-    {
+    let optimal: Vec<Mutex<OptimalPixel>> = if optimal_mis {
         (0..w as usize * h as usize)
             .map(|_| Mutex::new(OptimalPixel::default()))
             .collect()
@@ -256,10 +258,40 @@ fn tiles(w: u32, h: u32, size: u32) -> Vec<Tile> {
     t
 }
 
-/// Sample indices at which rounds start: about eight rounds, at least one sample each.
-fn round_boundaries(first: u32, last: u32) -> Vec<u32> {
+/// Samples (pixels × samples per pixel) a round holds at least where the render has
+/// that many: about 0.1 s of work on 2 cores, so a stop request, the progress bar and a
+/// live view still answer within a fraction of a second.
+const MIN_ROUND_SAMPLES: u64 = 1 << 20;
+
+/// Sample indices at which the rounds of samples `first..last` of an image of `pixels`
+/// pixels start. With `eighths`, eight rounds (fewer if there are fewer samples per
+/// pixel). Otherwise about eight, but each of at least [`MIN_ROUND_SAMPLES`] samples
+/// where the render has them, and in whole chunks of [`packets::CHUNK`] samples per
+/// pixel where a round has more than one chunk: a round shades each pixel's samples
+/// in chunks of consecutive ones, which share caches and branch predictors, and each
+/// round ends at a barrier. At 16 spp, eight rounds of 2 spp ran the README's render
+/// 1.12× slower than two of 8 (BENCHMARKS.md, session 22). Pixel-box images do not
+/// depend on the rounds; splatted ones do, through the order of their sums, so the
+/// rounds depend on the image and the sample range alone.
+fn round_boundaries(first: u32, last: u32, pixels: u64, eighths: bool) -> Vec<u32> {
     let n = last - first;
-    let step = n.div_ceil(8).max(1);
+    let eighth = n.div_ceil(8).max(1);
+    let step = if eighths {
+        eighth
+    } else {
+        let chunk = packets::CHUNK;
+        let floor = (MIN_ROUND_SAMPLES / pixels.max(1)).clamp(1, u32::MAX as u64) as u32;
+        let step = eighth.max(if floor > chunk {
+            floor - floor % chunk
+        } else {
+            floor
+        });
+        if step > chunk {
+            step.div_ceil(chunk) * chunk
+        } else {
+            step
+        }
+    };
     let mut b: Vec<u32> = (first..last).step_by(step as usize).collect();
     b.push(last);
     b
@@ -282,6 +314,32 @@ pub fn render_quiet(scene: &Scene, settings: &RenderSettings) -> RenderOutput {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn rounds_are_eighths_of_at_least_a_million_samples() {
+        let readme = 384 * 256;
+        // Eight rounds of 2 spp would be too short: two of a chunk each.
+        assert_eq!(round_boundaries(0, 16, readme, false), [0, 8, 16]);
+        let eighths: Vec<u32> = (0..=16).step_by(2).collect();
+        assert_eq!(round_boundaries(0, 16, readme, true), eighths);
+        assert_eq!(round_boundaries(0, 5, readme, false), [0, 5]);
+        // A 64² image: 256 spp are a million samples, one round.
+        assert_eq!(round_boundaries(3, 259, 64 * 64, false), [3, 259]);
+        // Eighths of whole chunks: 13 spp would be 8 + 5.
+        let b = round_boundaries(0, 100, 1024 * 1024, false);
+        assert_eq!(b, [0, 16, 32, 48, 64, 80, 96, 100]);
+        // A large image: rounds of 1 spp are a million samples already.
+        assert_eq!(round_boundaries(0, 4, 1920 * 1080, false), [0, 1, 2, 3, 4]);
+        // 512²: four spp per round make a million samples.
+        assert_eq!(round_boundaries(0, 16, 512 * 512, false), [0, 4, 8, 12, 16]);
+        for (first, last, pixels) in [(0, 1, 1), (7, 100, 1000), (0, 1000, 1 << 22), (0, 9, 0)] {
+            for eighths in [false, true] {
+                let b = round_boundaries(first, last, pixels, eighths);
+                assert_eq!((b[0], *b.last().unwrap()), (first, last));
+                assert!(b.windows(2).all(|w| w[0] < w[1]) && b.len() <= 9);
+            }
+        }
+    }
 
     #[test]
     fn small_images_get_smaller_tiles() {

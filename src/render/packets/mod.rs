@@ -71,7 +71,7 @@ type BlockPixel = (u32, u32, PixelStreams);
 /// predictors warm (shading index by index across the block instead took 1.6 % more
 /// instructions and ran at 0.91–0.95× on the README scene, `mesh_obj` and the
 /// 10⁶-triangle mesh).
-const CHUNK: u32 = 8;
+pub(super) const CHUNK: u32 = 8;
 
 /// Calls `f(sample indices, block)` for samples `samples` of every pixel of `tile` (of an
 /// image `width` pixels wide, streams of a `kind` sampler keyed by `seed`): for each [`BLOCK_WIDTH`] ×
