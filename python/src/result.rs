@@ -189,10 +189,12 @@ pub fn render(
                 v.send(&scene.name, film);
             }
         };
+        // Frames only for a live view: a render without one may take fewer, longer
+        // rounds.
         let control = Control {
             progress: &|_, _| {},
             stop,
-            frame: Some(&frame),
+            frame: view.is_some().then_some(&frame as &(dyn Fn(&Film) + Sync)),
         };
         let out = render_scene(scene, &s, &control);
         if let Some(v) = view {

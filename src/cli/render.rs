@@ -146,10 +146,13 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
             d.send(&scene.name, film);
         }
     };
+    // Frames only for a live view: a render without one may take fewer, longer rounds.
     let control = Control {
         progress: &progress,
         stop: &STOP,
-        frame: Some(&frame),
+        frame: display
+            .is_some()
+            .then_some(&frame as &(dyn Fn(&Film) + Sync)),
     };
     let out = pool.install(|| render_budget(&scene, &settings, budget, &control));
     bar.finish_and_clear();

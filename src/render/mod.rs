@@ -106,11 +106,12 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
     let tiles = tiles(w, h, tile_size(w, h));
     let invalid = AtomicU64::new(0);
     let start = Instant::now();
-    // Optimal MIS learns its weights round by round (the first is the balance heuristic):
-    // it keeps its eight rounds.
+    // Optimal MIS learns its weights round by round (the first is the balance heuristic),
+    // and a live view shows a render refine round by round: both keep eight rounds.
     let optimal_mis =
         settings.estimator == EstimatorKind::Mis && settings.mis.heuristic == MisHeuristic::Optimal;
-    let rounds = round_boundaries(first, last, w as u64 * h as u64, optimal_mis);
+    let eighths = optimal_mis || control.frame.is_some();
+    let rounds = round_boundaries(first, last, w as u64 * h as u64, eighths);
     let total = (last - first) as u64 * (w * h) as u64;
     let mut done = first;
     let mut stopped = false;
@@ -271,8 +272,10 @@ const MIN_ROUND_SAMPLES: u64 = 1 << 20;
 /// in chunks of consecutive ones, which share caches and branch predictors, and each
 /// round ends at a barrier. At 16 spp, eight rounds of 2 spp ran the README's render
 /// 1.12× slower than two of 8 (BENCHMARKS.md, session 22). Pixel-box images do not
-/// depend on the rounds; splatted ones do, through the order of their sums, so the
-/// rounds depend on the image and the sample range alone.
+/// depend on the rounds; splatted ones do, in their last bits, through the order of
+/// their sums (so a splatted render with a live view, which asks for `eighths`, may
+/// differ from one without in its last bits), so the rounds depend on the image, the
+/// sample range and `eighths` alone, never on the threads or the clock.
 fn round_boundaries(first: u32, last: u32, pixels: u64, eighths: bool) -> Vec<u32> {
     let n = last - first;
     let eighth = n.div_ceil(8).max(1);
