@@ -13,8 +13,8 @@
 //! round asks for about a quarter of the time left at the speed measured so far, so the
 //! total converges to the budget from below; rounds stop when less than half a sample per
 //! pixel of time is left, or when a watcher thread signals the deadline (`render` then
-//! finishes its current internal round: an eighth of the call, or about 10⁶ samples where
-//! that is more).
+//! finishes its current internal round: an eighth of the call, or on a small image up to
+//! the whole call, about 10⁶ samples).
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};

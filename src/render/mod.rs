@@ -85,7 +85,10 @@ pub struct Control<'a> {
     pub progress: &'a (dyn Fn(u64, u64) + Sync),
     /// Set to stop after the current round.
     pub stop: &'a AtomicBool,
-    /// Called with the film after each round (a live view), when given.
+    /// Called with the film after each round (a live view), when given. A render given
+    /// one keeps eight rounds where it has the samples, so that the view refines; without
+    /// one, a short render takes fewer, longer rounds (a splatted image may then differ
+    /// in its last bits, see `round_boundaries`).
     pub frame: Option<&'a (dyn Fn(&Film) + Sync)>,
 }
 
@@ -259,22 +262,25 @@ fn tiles(w: u32, h: u32, size: u32) -> Vec<Tile> {
     t
 }
 
-/// Samples (pixels × samples per pixel) a round holds at least where the render has
-/// that many: about 0.1 s of work on 2 cores, so a stop request, the progress bar and a
-/// live view still answer within a fraction of a second.
+/// Samples (pixels × samples per pixel) a round aims at where the render has them:
+/// about 0.1 s of the README scene's work on 2 cores (heavier scenes take a few times
+/// longer), so a stop request and the progress bar still answer within a fraction of a
+/// second.
 const MIN_ROUND_SAMPLES: u64 = 1 << 20;
 
 /// Sample indices at which the rounds of samples `first..last` of an image of `pixels`
-/// pixels start. With `eighths`, eight rounds (fewer if there are fewer samples per
-/// pixel). Otherwise about eight, but each of at least [`MIN_ROUND_SAMPLES`] samples
-/// where the render has them, and in whole chunks of [`packets::CHUNK`] samples per
-/// pixel where a round has more than one chunk: a round shades each pixel's samples
-/// in chunks of consecutive ones, which share caches and branch predictors, and each
-/// round ends at a barrier. At 16 spp, eight rounds of 2 spp ran the README's render
-/// 1.12× slower than two of 8 (BENCHMARKS.md, session 22). Pixel-box images do not
-/// depend on the rounds; splatted ones do, in their last bits, through the order of
+/// pixels start: at most eight rounds, of ⌈n/8⌉ samples per pixel each (n = last −
+/// first). With `eighths`, exactly that. Otherwise each round is also of at least
+/// [`MIN_ROUND_SAMPLES`] samples where the render has them, rounded down to whole
+/// chunks of [`packets::CHUNK`] samples per pixel (so between half of it and all of
+/// it), and a round of more than one chunk is rounded up to whole chunks: a round
+/// shades each pixel's samples in chunks of consecutive ones, which share caches and
+/// branch predictors, and each round ends at a barrier. At 16 spp, eight rounds of
+/// 2 spp ran the README's render 1.12× slower than two of 8 (BENCHMARKS.md, session
+/// 22). Pixel-box images do not depend on the rounds (except under optimal MIS, which
+/// asks for `eighths`); splatted ones do, in their last bits, through the order of
 /// their sums (so a splatted render with a live view, which asks for `eighths`, may
-/// differ from one without in its last bits), so the rounds depend on the image, the
+/// differ in its last bits from one without). The rounds depend on the image, the
 /// sample range and `eighths` alone, never on the threads or the clock.
 fn round_boundaries(first: u32, last: u32, pixels: u64, eighths: bool) -> Vec<u32> {
     let n = last - first;
@@ -283,14 +289,16 @@ fn round_boundaries(first: u32, last: u32, pixels: u64, eighths: bool) -> Vec<u3
         eighth
     } else {
         let chunk = packets::CHUNK;
-        let floor = (MIN_ROUND_SAMPLES / pixels.max(1)).clamp(1, u32::MAX as u64) as u32;
-        let step = eighth.max(if floor > chunk {
+        // At most 2²⁰ (pixels ≥ 1): no overflow below.
+        let floor = (MIN_ROUND_SAMPLES / pixels.max(1)) as u32;
+        let floor = if floor > chunk {
             floor - floor % chunk
         } else {
-            floor
-        });
+            floor.max(1)
+        };
+        let step = eighth.max(floor);
         if step > chunk {
-            step.div_ceil(chunk) * chunk
+            step.next_multiple_of(chunk)
         } else {
             step
         }
@@ -319,9 +327,10 @@ mod tests {
     use super::*;
 
     #[test]
-    fn rounds_are_eighths_of_at_least_a_million_samples() {
+    fn rounds_are_eighths_of_about_a_million_samples_or_more() {
         let readme = 384 * 256;
-        // Eight rounds of 2 spp would be too short: two of a chunk each.
+        // Eight rounds of 2 spp would be too short: two of a chunk each (10 spp make
+        // 2²⁰ samples, rounded down to a chunk).
         assert_eq!(round_boundaries(0, 16, readme, false), [0, 8, 16]);
         let eighths: Vec<u32> = (0..=16).step_by(2).collect();
         assert_eq!(round_boundaries(0, 16, readme, true), eighths);

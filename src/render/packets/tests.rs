@@ -164,9 +164,9 @@ fn samples_do_not_depend_on_rounds_passes_or_tiles() {
         };
         let (w, h) = (camera.width, camera.height);
         let key = (settings.seed, w);
-        // The samples in rounds as the single render takes them (two samples per
-        // round) and as the 3-pass render does (one per round), over the render's
-        // 4 × 4 tiles; and all in one piece over the whole image.
+        // The samples in rounds of two and of one sample per pixel (as the single
+        // and the 3-pass render took them when rounds were always eighths), over the
+        // render's 4 × 4 tiles; and all in one piece over the whole image.
         let in_rounds = |rounds: &[Range<u32>], tiles: &[Tile]| {
             let mut out = BTreeMap::new();
             for samples in rounds {
