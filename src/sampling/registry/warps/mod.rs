@@ -1,6 +1,7 @@
 //! Registry rows for the warps, with the parameters each is tested at (Phong exponents,
 //! cone angles, spherical shapes seen from near, far and grazing points): the square,
-//! disk, hemisphere, lobe and planar warps here, the spherical ones in [`spherical`].
+//! disk, hemisphere, sphere, lobe, 1-D and planar warps here, the spherical triangles,
+//! rectangles and polygons in [`spherical`].
 
 mod spherical;
 
@@ -11,7 +12,7 @@ use crate::sampling::Rng32;
 use crate::sampling::chi2::Domain;
 use crate::sampling::warp::*;
 
-pub(super) fn entry(
+fn entry(
     name: &str,
     description: &str,
     domain: Domain,
@@ -31,20 +32,20 @@ pub(super) fn entry(
     }
 }
 
-pub(super) fn with_inverse(mut e: Entry, inverse: Box<dyn Fn(Vec3) -> Vec2>) -> Entry {
+fn with_inverse(mut e: Entry, inverse: Box<dyn Fn(Vec3) -> Vec2>) -> Entry {
     e.inverse = Some(inverse);
     e
 }
 
-pub(super) fn square(f: impl Fn(Vec2) -> (Vec3, f32) + 'static) -> Draw {
+fn square(f: impl Fn(Vec2) -> (Vec3, f32) + 'static) -> Draw {
     Draw::Square(boxed(f))
 }
 
-pub(super) fn stream(f: impl Fn(&mut Rng32) -> (Vec3, f32) + 'static) -> Draw {
+fn stream(f: impl Fn(&mut Rng32) -> (Vec3, f32) + 'static) -> Draw {
     Draw::Stream(Box::new(f))
 }
 
-pub(super) fn flat(p: Vec2) -> Vec3 {
+fn flat(p: Vec2) -> Vec3 {
     p.extend(0.0)
 }
 

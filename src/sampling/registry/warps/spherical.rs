@@ -1,5 +1,6 @@
 //! Registry rows for the spherical warps: solid-angle and projected-solid-angle sampling
-//! of triangles, rectangles and polygons, seen from near, far and grazing points.
+//! of triangles, rectangles and polygons, seen from near, far and grazing points and
+//! around the zenith.
 
 use glam::Vec3;
 

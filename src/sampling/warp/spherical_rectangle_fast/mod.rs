@@ -24,7 +24,7 @@
 //! The algebra stays in f64: near the rectangle's plane (|z0| small next to its
 //! extent) x_u's denominator n² − (1 − b0²)s² cancels, and in f32 the sampled u₀ moved
 //! by up to 2·10⁻³ of the square (measured while writing this; the tests, `tests.rs`,
-//! bound the f64 algebra at 10⁻⁵ in the same placements).
+//! bound S at 10⁻⁵ relative and the sampled u at 10⁻⁴ in the same placements).
 
 use glam::{DVec3, Vec2, Vec3};
 
