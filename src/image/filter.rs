@@ -3,7 +3,7 @@
 //! pixel whose centre c has |cₓ − pₓ| and |c_y − p_y| within the radius, with the separable
 //! weight f(cₓ − pₓ) · f(c_y − p_y); the pixel value is Σ w·L / Σ w.
 
-use glam::Vec4;
+use glam::{Vec2, Vec4};
 
 use crate::math::exp::exp4;
 
@@ -156,17 +156,68 @@ impl PreparedFilter {
         let mut start = 0;
         while start < n {
             let x = (Vec4::new(0.0, 1.0, 2.0, 3.0) + (first + start as f32)) - p;
-            let w = match self.filter {
-                Filter::Box { radius } => {
-                    Vec4::select(x.abs().cmple(Vec4::splat(radius)), Vec4::ONE, Vec4::ZERO)
-                }
-                Filter::Tent { radius } => (1.0 - x.abs() / radius).max(Vec4::ZERO),
-                Filter::Gaussian { .. } => (exp4(self.alpha * x * x) - self.bias).max(Vec4::ZERO),
-            };
+            let w = self.eval4(x);
             w.write_to_slice(&mut weights[start..start + 4]);
             start += 4;
         }
         (lo as u32, n)
+    }
+
+    /// [`weights`](Self::weights) along both axes of an image `size` pixels wide and
+    /// high, bit for bit. Where both footprints fit four lanes (the default Gaussian's
+    /// nearly always do), the two axes' lanes are evaluated side by side, so their two
+    /// polynomial chains overlap instead of one waiting for the other.
+    #[inline(always)]
+    pub fn weights_xy(
+        &self,
+        p: Vec2,
+        (width, height): (u32, u32),
+        wx: &mut [f32; FOOTPRINT_LANES],
+        wy: &mut [f32; FOOTPRINT_LANES],
+    ) -> ((u32, usize), (u32, usize)) {
+        let span = |(lo, hi): (i64, i64)| ((hi - lo + 1).max(0) as usize).min(MAX_FOOTPRINT);
+        let (fx, fy) = (
+            self.filter.footprint(p.x, width),
+            self.filter.footprint(p.y, height),
+        );
+        let (nx, ny) = (span(fx), span(fy));
+        if nx > 4 || ny > 4 {
+            return (self.weights(p.x, width, wx), self.weights(p.y, height, wy));
+        }
+        let lanes = Vec4::new(0.0, 1.0, 2.0, 3.0);
+        let x = (lanes + (fx.0 as f32 + 0.5)) - p.x;
+        let y = (lanes + (fy.0 as f32 + 0.5)) - p.y;
+        let (ex, ey) = self.eval4_pair(x, y);
+        ex.write_to_slice(&mut wx[..4]);
+        ey.write_to_slice(&mut wy[..4]);
+        ((fx.0 as u32, nx), (fy.0 as u32, ny))
+    }
+
+    /// The filter at four offsets.
+    #[inline(always)]
+    fn eval4(&self, x: Vec4) -> Vec4 {
+        match self.filter {
+            Filter::Box { radius } => {
+                Vec4::select(x.abs().cmple(Vec4::splat(radius)), Vec4::ONE, Vec4::ZERO)
+            }
+            Filter::Tent { radius } => (1.0 - x.abs() / radius).max(Vec4::ZERO),
+            Filter::Gaussian { .. } => (exp4(self.alpha * x * x) - self.bias).max(Vec4::ZERO),
+        }
+    }
+
+    /// [`eval4`](Self::eval4) at `x` and at `y`, with one choice of the filter.
+    #[inline(always)]
+    fn eval4_pair(&self, x: Vec4, y: Vec4) -> (Vec4, Vec4) {
+        match self.filter {
+            Filter::Gaussian { .. } => {
+                let (ex, ey) = (exp4(self.alpha * x * x), exp4(self.alpha * y * y));
+                (
+                    (ex - self.bias).max(Vec4::ZERO),
+                    (ey - self.bias).max(Vec4::ZERO),
+                )
+            }
+            _ => (self.eval4(x), self.eval4(y)),
+        }
     }
 }
 
@@ -197,16 +248,18 @@ mod tests {
         assert!(Filter::Tent { radius: 0.0 }.validate().is_err());
     }
 
+    /// The filters the weight tests run: every kind, default and other sizes.
+    const FILTERS: [Filter; 5] = [
+        Filter::Box { radius: 0.5 },
+        Filter::TENT,
+        Filter::Tent { radius: 2.5 },
+        Filter::GAUSSIAN,
+        Filter::Gaussian { stddev: 1.3 },
+    ];
+
     #[test]
     fn prepared_weights_are_the_filter_values() {
-        let filters = [
-            Filter::default(),
-            Filter::TENT,
-            Filter::Tent { radius: 2.5 },
-            Filter::GAUSSIAN,
-            Filter::Gaussian { stddev: 1.3 },
-        ];
-        for f in filters {
+        for f in FILTERS {
             let prepared = f.prepare();
             for i in 0..=6400 {
                 let p = i as f32 * 0.01;
@@ -224,5 +277,34 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Both axes at once are each axis alone, bit for bit, inside the image, at its
+    /// edges and on pixel edges (where the default Gaussian reaches five pixels).
+    #[test]
+    fn weights_xy_are_the_weights_of_each_axis() {
+        // Positions where the default Gaussian reaches five pixels, so that both
+        // axes are not evaluated side by side.
+        let mut five = 0;
+        for f in FILTERS {
+            let prepared = f.prepare();
+            for i in 0..=1300 {
+                let mut p = Vec2::new(i as f32 * 0.01, (1300 - i) as f32 * 0.0077);
+                if i % 10 == 0 {
+                    // On a pixel edge ± the radius: a fifth pixel at weight zero.
+                    p.x = (i / 100) as f32 + 0.5;
+                }
+                let (mut wx, mut wy) = ([0.0; FOOTPRINT_LANES], [0.0; FOOTPRINT_LANES]);
+                let (sx, sy) = prepared.weights_xy(p, (13, 10), &mut wx, &mut wy);
+                let (mut ax, mut ay) = ([0.0; FOOTPRINT_LANES], [0.0; FOOTPRINT_LANES]);
+                assert_eq!(sx, prepared.weights(p.x, 13, &mut ax), "{f:?} at {p}");
+                assert_eq!(sy, prepared.weights(p.y, 10, &mut ay), "{f:?} at {p}");
+                let bits = |w: &[f32]| w.iter().map(|w| w.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&wx[..sx.1]), bits(&ax[..sx.1]), "{f:?} at {p}");
+                assert_eq!(bits(&wy[..sy.1]), bits(&ay[..sy.1]), "{f:?} at {p}");
+                five += (f == Filter::GAUSSIAN && sx.1.max(sy.1) == 5) as u32;
+            }
+        }
+        assert!(five > 10, "{five} five-pixel footprints");
     }
 }

@@ -27,104 +27,173 @@ pub(super) fn round_splatted(
     let (w, h) = (film.width, film.height);
     let reach = filter.radius().ceil() as u32;
     let filter = filter.prepare();
-    let results: Vec<(Tile, Vec<Splats>)> = tiles
+    let avx2 = has_avx2();
+    let results: Vec<SplatBuffer> = tiles
         .par_iter()
         .map(|&(x0, y0, x1, y1)| {
             let bx0 = x0.saturating_sub(reach);
             let by0 = y0.saturating_sub(reach);
             let (bx1, by1) = ((x1 + reach).min(w), (y1 + reach).min(h));
-            let bw = bx1 - bx0;
-            let mut buf = vec![Splats::default(); (bw * (by1 - by0)) as usize];
+            let mut buf = SplatBuffer::new((bx0, by0, bx1, by1));
             job.run(
                 (x0, y0, x1, y1),
                 samples.clone(),
                 (seed, w),
-                &mut |_, _, p, l| {
-                    splat(&mut buf, (bx0, by0, bw), &filter, (w, h), p, l);
-                },
+                &mut |_, _, p, l| buf.splat(avx2, &filter, (w, h), p, l),
             );
-            ((bx0, by0, bx1, by1), buf)
+            buf
         })
         .collect();
-    for ((bx0, by0, bx1, _), buf) in results {
-        for (i, splats) in buf.into_iter().enumerate() {
-            if splats.count == 0 {
+    for buf in results {
+        for i in 0..buf.cells {
+            if buf.count[i] == 0 {
                 continue;
             }
-            let stats = splats.stats();
-            let (x, y) = (bx0 + i as u32 % (bx1 - bx0), by0 + i as u32 / (bx1 - bx0));
+            let stats = buf.stats(i);
+            let (x, y) = (buf.x0 + i as u32 % buf.width, buf.y0 + i as u32 / buf.width);
             let px = &mut film.pixels[(y * w + x) as usize];
             *px = px.merge(&stats);
         }
     }
 }
 
-/// Adds the sample (film position `p`, radiance `l`) to every pixel of `buf` (whose
-/// pixel (0, 0) is the image's (bx0, by0), rows `bw` wide) that the filter reaches with
-/// a positive weight. The weights are evaluated once per axis (the filter is separable).
-#[inline]
-fn splat(
-    buf: &mut [Splats],
-    (bx0, by0, bw): (u32, u32, u32),
-    filter: &PreparedFilter,
-    (w, h): (u32, u32),
-    p: Vec2,
-    l: Spectrum,
-) {
-    let mut wx = [0.0f32; FOOTPRINT_LANES];
-    let mut wy = [0.0f32; FOOTPRINT_LANES];
-    let (xl, nx) = filter.weights(p.x, w, &mut wx);
-    let (yl, ny) = filter.weights(p.y, h, &mut wy);
-    let x = l.as_dvec3();
-    for (j, &wyj) in wy[..ny].iter().enumerate() {
-        if wyj <= 0.0 {
-            continue;
+/// Whether the processor has AVX2 (four f64 lanes for the sums), detected at run time.
+fn has_avx2() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("avx2")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
+/// Weighted sums of the splats within a tile and round, for the pixels the tile's filter
+/// reaches, in f64 so the variance from sums (M2 = Σw·x² − (Σw·x)²/W) keeps its
+/// precision; cheaper per splat than a weighted Welford update, and turned into
+/// [`PixelStats`] once per round. The sums lie plane by plane (W, Σw², Σw·x per channel,
+/// Σ(w·x)·x per channel: [`PLANES`] arrays of the cells), so that a row of the filter's
+/// footprint adds to four neighbouring cells of each plane in one vector step. (Cell by
+/// cell, the eight sums of a cell had to be gathered into vectors from scalars on every
+/// splat.)
+struct SplatBuffer {
+    /// The image pixel of cell 0.
+    x0: u32,
+    y0: u32,
+    /// Cells per row.
+    width: u32,
+    /// Cells in use (rows × `width`); each plane has [`PAD`] more.
+    cells: usize,
+    /// Splats of positive weight per cell.
+    count: Vec<u32>,
+    /// The [`PLANES`] planes, each `cells + PAD` long.
+    sums: Vec<f64>,
+}
+
+/// Sums per cell: W, Σw², Σw·x (r, g, b), Σ(w·x)·x (r, g, b).
+const PLANES: usize = 8;
+
+/// Cells past the last one in each plane: a footprint row is added in groups of four
+/// lanes, and its last group may reach past the row (with zero weights there, so the
+/// cells it touches, the next row's or these, keep their sums).
+const PAD: usize = 4;
+
+impl SplatBuffer {
+    /// Empty sums for the pixels [x0, x1) × [y0, y1).
+    fn new((x0, y0, x1, y1): Tile) -> Self {
+        let cells = ((x1 - x0) * (y1 - y0)) as usize;
+        Self {
+            x0,
+            y0,
+            width: x1 - x0,
+            cells,
+            count: vec![0; cells + PAD],
+            sums: vec![0.0; PLANES * (cells + PAD)],
         }
-        let start = ((yl + j as u32 - by0) * bw + xl - bx0) as usize;
-        for (cell, &wxk) in buf[start..start + nx].iter_mut().zip(&wx[..nx]) {
-            let wt = wyj * wxk;
-            if wt > 0.0 {
-                cell.add(x, wt);
+    }
+
+    /// Adds the sample (film position `p`, radiance `l`) to every cell that the filter
+    /// reaches with a positive weight, in an image of `w` × `h` pixels (`avx2`: the
+    /// processor has AVX2, from [`has_avx2`]).
+    #[inline(always)]
+    fn splat(
+        &mut self,
+        avx2: bool,
+        filter: &PreparedFilter,
+        size: (u32, u32),
+        p: Vec2,
+        l: Spectrum,
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        if avx2 {
+            // SAFETY: the caller found AVX2 on this processor. The code is the same
+            // (adds and products, no fused multiply–add), so the sums are bit for bit
+            // the baseline build's.
+            unsafe { self.splat_avx2(filter, size, p, l) };
+            return;
+        }
+        let _ = avx2;
+        self.splat_lanes(filter, size, p, l);
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn splat_avx2(&mut self, filter: &PreparedFilter, size: (u32, u32), p: Vec2, l: Spectrum) {
+        self.splat_lanes(filter, size, p, l);
+    }
+
+    /// [`splat`](Self::splat)'s body. The weights are evaluated once per axis (the
+    /// filter is separable); each cell gains w, w², w·x and (w·x)·x with w = w_y·w_x.
+    #[inline(always)]
+    fn splat_lanes(&mut self, filter: &PreparedFilter, (w, h): (u32, u32), p: Vec2, l: Spectrum) {
+        let mut wx = [0.0f32; FOOTPRINT_LANES];
+        let mut wy = [0.0f32; FOOTPRINT_LANES];
+        let ((xl, nx), (yl, ny)) = filter.weights_xy(p, (w, h), &mut wx, &mut wy);
+        // Lanes past the footprint (beyond the image's edge) add nothing.
+        wx[nx..].fill(0.0);
+        let x = l.as_dvec3();
+        let stride = self.cells + PAD;
+        for (j, &wyj) in wy[..ny].iter().enumerate() {
+            if wyj <= 0.0 {
+                continue;
+            }
+            let row = ((yl + j as u32 - self.y0) * self.width + xl - self.x0) as usize;
+            for (g, wx4) in wx[..nx.next_multiple_of(4)].chunks_exact(4).enumerate() {
+                let at = row + 4 * g;
+                let wt: [f64; 4] = std::array::from_fn(|k| (wyj * wx4[k]) as f64);
+                let planes: [[f64; 4]; PLANES] = [
+                    wt,
+                    wt.map(|w| w * w),
+                    wt.map(|w| w * x.x),
+                    wt.map(|w| w * x.y),
+                    wt.map(|w| w * x.z),
+                    wt.map(|w| (w * x.x) * x.x),
+                    wt.map(|w| (w * x.y) * x.y),
+                    wt.map(|w| (w * x.z) * x.z),
+                ];
+                for (plane, add) in self.sums.chunks_exact_mut(stride).zip(planes) {
+                    for (sum, t) in plane[at..at + 4].iter_mut().zip(add) {
+                        *sum += t;
+                    }
+                }
+                for (n, &w) in self.count[at..at + 4].iter_mut().zip(&wt) {
+                    *n += (w > 0.0) as u32;
+                }
             }
         }
     }
-}
 
-/// Weighted sums of one pixel's splats within a tile and round, in f64 so the variance
-/// from sums (M2 = Σw·x² − (Σw·x)²/W) keeps its precision; cheaper per splat than a
-/// weighted Welford update, and turned into [`PixelStats`] once per round. The sums sit
-/// in one array of eight (W, Σw², Σw·x, Σ(w·x)·x), so that the compiler can add them
-/// in two-lane f64 steps.
-#[derive(Clone, Copy, Default)]
-struct Splats {
-    count: u32,
-    acc: [f64; 8],
-}
-
-impl Splats {
-    /// Adds one splat of radiance `x` with weight `w`: the slots gain w, w·w, w·x and
-    /// (w·x)·x. The eight terms are formed in registers (an earlier version patched w
-    /// into a per-sample array in memory and read it back as vectors, a store-forwarding
-    /// stall on every add that made the tent filter 10 % slower).
-    #[inline(always)]
-    fn add(&mut self, x: DVec3, w: f32) {
-        let w = w as f64;
-        let wx = w * x;
-        let wxx = wx * x;
-        let terms = [w, w * w, wx.x, wx.y, wx.z, wxx.x, wxx.y, wxx.z];
-        self.count += 1;
-        for (acc, t) in self.acc.iter_mut().zip(terms) {
-            *acc += t;
-        }
-    }
-
-    fn stats(&self) -> PixelStats {
-        let [w, w2, sx, sy, sz, qx, qy, qz] = self.acc;
+    /// Cell `i`'s sums as pixel statistics.
+    fn stats(&self, i: usize) -> PixelStats {
+        let stride = self.cells + PAD;
+        let [w, w2, sx, sy, sz, qx, qy, qz]: [f64; PLANES] =
+            std::array::from_fn(|k| self.sums[k * stride + i]);
         let sum = DVec3::new(sx, sy, sz);
         let sum2 = DVec3::new(qx, qy, qz);
         let mean = sum / w;
         PixelStats {
-            count: self.count,
+            count: self.count[i],
             mean: mean.as_vec3(),
             m2: (sum2 - sum * mean).max(DVec3::ZERO).as_vec3(),
             weight: w as f32,
@@ -136,31 +205,133 @@ impl Splats {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::image::Filter;
+    use crate::sampling::rng::Rng32;
+
+    /// The sums of one cell (count, then the eight planes).
+    fn cell(buf: &SplatBuffer, i: usize) -> (u32, [f64; PLANES]) {
+        let stride = buf.cells + PAD;
+        (
+            buf.count[i],
+            std::array::from_fn(|k| buf.sums[k * stride + i]),
+        )
+    }
 
     #[test]
     fn sums_are_the_weighted_moments() {
-        let mut s = Splats::default();
+        // A tent of radius 1 on a 1 × 1 image: a sample at (0.5, 0) weighs 1 · 0.5, one
+        // at (0, 0) 0.5 · 0.5 (the footprint clamped to the one pixel).
+        let filter = Filter::TENT.prepare();
+        let mut buf = SplatBuffer::new((0, 0, 1, 1));
         let samples = [
-            (Spectrum::new(1.0, 2.0, 3.0), 0.5f32),
-            (Spectrum::new(3.0, 0.0, 1.0), 0.25),
+            (Vec2::new(0.5, 0.0), Spectrum::new(1.0, 2.0, 3.0), 0.5f32),
+            (Vec2::new(0.0, 0.0), Spectrum::new(3.0, 0.0, 1.0), 0.25),
         ];
-        for (l, w) in samples {
-            s.add(l.as_dvec3(), w);
+        for (p, l, _) in samples {
+            buf.splat(has_avx2(), &filter, (1, 1), p, l);
         }
-        let stats = s.stats();
+        let stats = buf.stats(0);
         assert_eq!(stats.count, 2);
         assert_eq!(stats.weight, 0.75);
         assert_eq!(stats.weight2, 0.3125);
         // Weighted mean (0.5·(1,2,3) + 0.25·(3,0,1)) / 0.75 and Σw(x − mean)².
         let mean = Spectrum::new(5.0 / 3.0, 4.0 / 3.0, 7.0 / 3.0);
         assert!((stats.mean - mean).abs().max_element() < 1e-6);
-        let m2 = samples
-            .iter()
-            .fold(Spectrum::ZERO, |m, &(l, w)| m + w * (l - mean) * (l - mean));
+        let m2 = samples.iter().fold(Spectrum::ZERO, |m, &(_, l, w)| {
+            m + w * (l - mean) * (l - mean)
+        });
         assert!(
             (stats.m2 - m2).abs().max_element() < 1e-5,
             "{} vs {m2}",
             stats.m2
         );
+    }
+
+    /// The plane-by-plane sums, with and without AVX2, are bit for bit those of adding
+    /// each sample to each cell it reaches with a positive weight, one cell at a time:
+    /// tiles at two opposite corners of the image, each buffer widened by the filter's
+    /// reach on its inner sides (as [`round_splatted`] makes it), footprints of 1 to 5
+    /// pixels per axis.
+    #[test]
+    fn lanes_are_the_cell_by_cell_sums() {
+        let (w, h) = (13, 11);
+        for (x0, y0, x1, y1) in [(0, 4, 6, h), (7, 0, w, 5)] {
+            splat_tile(w, h, (x0, y0, x1, y1));
+        }
+    }
+
+    fn splat_tile(w: u32, h: u32, (x0, y0, x1, y1): Tile) {
+        let filters = [
+            Filter::default(),
+            Filter::TENT,
+            Filter::GAUSSIAN,
+            Filter::Gaussian { stddev: 0.3 },
+            Filter::Tent { radius: 2.5 },
+        ];
+        let mut rng = Rng32::new(7);
+        let mut reached = 0;
+        for filter in filters {
+            let reach = filter.radius().ceil() as u32;
+            let tile = (
+                x0.saturating_sub(reach),
+                y0.saturating_sub(reach),
+                (x1 + reach).min(w),
+                (y1 + reach).min(h),
+            );
+            let prepared = filter.prepare();
+            let mut lanes = SplatBuffer::new(tile);
+            let mut avx2 = SplatBuffer::new(tile);
+            let mut reference = SplatBuffer::new(tile);
+            for n in 0..400 {
+                // Film positions in the tile's pixels [x0, x1) × [y0, y1), some on
+                // pixel edges and centres exactly.
+                let lo = Vec2::new(x0 as f32, y0 as f32);
+                let size = Vec2::new((x1 - x0) as f32, (y1 - y0) as f32);
+                let mut p = lo + size * Vec2::new(rng.next_f32(), rng.next_f32());
+                if n % 5 == 0 {
+                    p = ((p * 2.0).floor() / 2.0).min(lo + size - 0.5);
+                }
+                let l = Spectrum::new(rng.next_f32(), 3.0 * rng.next_f32(), 0.0);
+                lanes.splat(false, &prepared, (w, h), p, l);
+                avx2.splat(has_avx2(), &prepared, (w, h), p, l);
+                let (mut wx, mut wy) = ([0.0; FOOTPRINT_LANES], [0.0; FOOTPRINT_LANES]);
+                let (xl, nx) = prepared.weights(p.x, w, &mut wx);
+                let (yl, ny) = prepared.weights(p.y, h, &mut wy);
+                for (j, &wyj) in wy[..ny].iter().enumerate() {
+                    for (k, &wxk) in wx[..nx].iter().enumerate() {
+                        let (x, y) = (xl + k as u32, yl + j as u32);
+                        assert!((tile.0..tile.2).contains(&x) && (tile.1..tile.3).contains(&y));
+                        let wt = wyj * wxk;
+                        if wt > 0.0 {
+                            let i = ((y - tile.1) * reference.width + x - tile.0) as usize;
+                            let stride = reference.cells + PAD;
+                            let (wt, x) = (wt as f64, l.as_dvec3());
+                            let terms = [
+                                wt,
+                                wt * wt,
+                                wt * x.x,
+                                wt * x.y,
+                                wt * x.z,
+                                (wt * x.x) * x.x,
+                                (wt * x.y) * x.y,
+                                (wt * x.z) * x.z,
+                            ];
+                            for (k, t) in terms.into_iter().enumerate() {
+                                reference.sums[k * stride + i] += t;
+                            }
+                            reference.count[i] += 1;
+                        }
+                    }
+                }
+            }
+            for i in 0..reference.cells {
+                let want = cell(&reference, i);
+                assert_eq!(cell(&lanes, i), want, "{filter:?}, cell {i}");
+                assert_eq!(cell(&avx2, i), want, "{filter:?}, cell {i} (AVX2)");
+                reached += want.0;
+            }
+        }
+        // Every splat reaches at least its own pixel.
+        assert!(reached >= 5 * 400, "{reached} splats");
     }
 }
