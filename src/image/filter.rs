@@ -165,7 +165,7 @@ impl PreparedFilter {
 
     /// [`weights`](Self::weights) along both axes of an image `size` pixels wide and
     /// high, bit for bit. Where both footprints fit four lanes (the default Gaussian's
-    /// nearly always do), the two axes' lanes are evaluated side by side, so their two
+    /// do unless the sample lies on a pixel centre), the two axes' lanes are evaluated side by side, so their two
     /// polynomial chains overlap instead of one waiting for the other.
     #[inline(always)]
     pub fn weights_xy(
@@ -280,7 +280,8 @@ mod tests {
     }
 
     /// Both axes at once are each axis alone, bit for bit, inside the image, at its
-    /// edges and on pixel edges (where the default Gaussian reaches five pixels).
+    /// edges and on pixel centres (where the default Gaussian reaches five pixels, the
+    /// outer ones at its radius).
     #[test]
     fn weights_xy_are_the_weights_of_each_axis() {
         // Positions where the default Gaussian reaches five pixels, so that both
@@ -291,7 +292,7 @@ mod tests {
             for i in 0..=1300 {
                 let mut p = Vec2::new(i as f32 * 0.01, (1300 - i) as f32 * 0.0077);
                 if i % 10 == 0 {
-                    // On a pixel edge ± the radius: a fifth pixel at weight zero.
+                    // On a pixel centre: pixel centres at ± the radius, a fifth pixel.
                     p.x = (i / 100) as f32 + 0.5;
                 }
                 let (mut wx, mut wy) = ([0.0; FOOTPRINT_LANES], [0.0; FOOTPRINT_LANES]);

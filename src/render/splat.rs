@@ -27,7 +27,7 @@ pub(super) fn round_splatted(
     let (w, h) = (film.width, film.height);
     let reach = filter.radius().ceil() as u32;
     let filter = filter.prepare();
-    let avx2 = has_avx2();
+    let lanes = Lanes::detect();
     let results: Vec<SplatBuffer> = tiles
         .par_iter()
         .map(|&(x0, y0, x1, y1)| {
@@ -39,7 +39,7 @@ pub(super) fn round_splatted(
                 (x0, y0, x1, y1),
                 samples.clone(),
                 (seed, w),
-                &mut |_, _, p, l| buf.splat(avx2, &filter, (w, h), p, l),
+                &mut |_, _, p, l| buf.splat(lanes, &filter, (w, h), p, l),
             );
             buf
         })
@@ -57,15 +57,26 @@ pub(super) fn round_splatted(
     }
 }
 
-/// Whether the processor has AVX2 (four f64 lanes for the sums), detected at run time.
-fn has_avx2() -> bool {
-    #[cfg(target_arch = "x86_64")]
-    {
-        std::arch::is_x86_feature_detected!("avx2")
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    {
-        false
+/// The vector width the splat may use: AVX2 (four f64 lanes for the sums) only where
+/// [`Lanes::detect`] found it on this processor; the field is private, so no other
+/// value with AVX2 can be made.
+#[derive(Clone, Copy, Debug)]
+struct Lanes {
+    avx2: bool,
+}
+
+impl Lanes {
+    /// The baseline (SSE2 on x86-64), which every processor has.
+    #[cfg(test)]
+    const BASELINE: Lanes = Lanes { avx2: false };
+
+    /// What this processor has, detected at run time.
+    fn detect() -> Lanes {
+        #[cfg(target_arch = "x86_64")]
+        let avx2 = std::arch::is_x86_feature_detected!("avx2");
+        #[cfg(not(target_arch = "x86_64"))]
+        let avx2 = false;
+        Lanes { avx2 }
     }
 }
 
@@ -95,8 +106,9 @@ struct SplatBuffer {
 const PLANES: usize = 8;
 
 /// Cells past the last one in each plane: a footprint row is added in groups of four
-/// lanes, and its last group may reach past the row (with zero weights there, so the
-/// cells it touches, the next row's or these, keep their sums).
+/// lanes, and its last group may reach past the footprint (with zero weights there, so
+/// the cells it touches, to the right in the same row, in the next row or these, keep
+/// their sums). Three would do.
 const PAD: usize = 4;
 
 impl SplatBuffer {
@@ -114,26 +126,30 @@ impl SplatBuffer {
     }
 
     /// Adds the sample (film position `p`, radiance `l`) to every cell that the filter
-    /// reaches with a positive weight, in an image of `w` × `h` pixels (`avx2`: the
-    /// processor has AVX2, from [`has_avx2`]).
+    /// reaches with a positive weight, in an image of `w` × `h` pixels, with the vector
+    /// width `lanes`. `l` must be finite (the renderer scores a non-finite estimate as
+    /// zero before it gets here, `CameraPackets::counted`): the lanes of zero weight
+    /// add 0 · l, which is zero only for finite `l`.
     #[inline(always)]
     fn splat(
         &mut self,
-        avx2: bool,
+        lanes: Lanes,
         filter: &PreparedFilter,
         size: (u32, u32),
         p: Vec2,
         l: Spectrum,
     ) {
+        debug_assert!(l.is_finite(), "splatted radiance {l}");
         #[cfg(target_arch = "x86_64")]
-        if avx2 {
-            // SAFETY: the caller found AVX2 on this processor. The code is the same
-            // (adds and products, no fused multiply–add), so the sums are bit for bit
-            // the baseline build's.
+        if lanes.avx2 {
+            // SAFETY: `Lanes` has AVX2 only where `Lanes::detect` found it on this
+            // processor.
             unsafe { self.splat_avx2(filter, size, p, l) };
             return;
         }
-        let _ = avx2;
+        // The same code either way (adds and products, no fused multiply–add), so the
+        // sums are bit for bit the same with and without AVX2.
+        let _ = lanes;
         self.splat_lanes(filter, size, p, l);
     }
 
@@ -150,7 +166,8 @@ impl SplatBuffer {
         let mut wx = [0.0f32; FOOTPRINT_LANES];
         let mut wy = [0.0f32; FOOTPRINT_LANES];
         let ((xl, nx), (yl, ny)) = filter.weights_xy(p, (w, h), &mut wx, &mut wy);
-        // Lanes past the footprint (beyond the image's edge) add nothing.
+        // Lanes past the footprint add nothing (`weights` fills them with the filter's
+        // values further on, positive where the footprint was cut at the image's edge).
         wx[nx..].fill(0.0);
         let x = l.as_dvec3();
         let stride = self.cells + PAD;
@@ -228,7 +245,7 @@ mod tests {
             (Vec2::new(0.0, 0.0), Spectrum::new(3.0, 0.0, 1.0), 0.25),
         ];
         for (p, l, _) in samples {
-            buf.splat(has_avx2(), &filter, (1, 1), p, l);
+            buf.splat(Lanes::detect(), &filter, (1, 1), p, l);
         }
         let stats = buf.stats(0);
         assert_eq!(stats.count, 2);
@@ -251,7 +268,7 @@ mod tests {
     /// each sample to each cell it reaches with a positive weight, one cell at a time:
     /// tiles at two opposite corners of the image, each buffer widened by the filter's
     /// reach on its inner sides (as [`round_splatted`] makes it), footprints of 1 to 5
-    /// pixels per axis.
+    /// pixels per axis. (On a processor without AVX2 both buffers take the baseline.)
     #[test]
     fn lanes_are_the_cell_by_cell_sums() {
         let (w, h) = (13, 11);
@@ -292,8 +309,8 @@ mod tests {
                     p = ((p * 2.0).floor() / 2.0).min(lo + size - 0.5);
                 }
                 let l = Spectrum::new(rng.next_f32(), 3.0 * rng.next_f32(), 0.0);
-                lanes.splat(false, &prepared, (w, h), p, l);
-                avx2.splat(has_avx2(), &prepared, (w, h), p, l);
+                lanes.splat(Lanes::BASELINE, &prepared, (w, h), p, l);
+                avx2.splat(Lanes::detect(), &prepared, (w, h), p, l);
                 let (mut wx, mut wy) = ([0.0; FOOTPRINT_LANES], [0.0; FOOTPRINT_LANES]);
                 let (xl, nx) = prepared.weights(p.x, w, &mut wx);
                 let (yl, ny) = prepared.weights(p.y, h, &mut wy);
