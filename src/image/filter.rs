@@ -148,8 +148,7 @@ impl PreparedFilter {
     /// [`Filter::eval`] for the box and the tent, within 10⁻⁷ of it for the Gaussian.
     #[inline]
     pub fn weights(&self, p: f32, size: u32, weights: &mut [f32; FOOTPRINT_LANES]) -> (u32, usize) {
-        let (lo, hi) = self.filter.footprint(p, size);
-        let n = ((hi - lo + 1).max(0) as usize).min(MAX_FOOTPRINT);
+        let (lo, n) = self.span(p, size);
         // (lo + k) + 0.5 is exact in f32 for any pixel index, so the lanes' offsets
         // are the scalar ones bit for bit.
         let first = lo as f32 + 0.5;
@@ -163,10 +162,19 @@ impl PreparedFilter {
         (lo as u32, n)
     }
 
+    /// The first pixel and the number of pixels along one axis that a sample at `p`
+    /// reaches in an image `size` pixels long (the footprint, clamped).
+    #[inline(always)]
+    fn span(&self, p: f32, size: u32) -> (i64, usize) {
+        let (lo, hi) = self.filter.footprint(p, size);
+        (lo, ((hi - lo + 1).max(0) as usize).min(MAX_FOOTPRINT))
+    }
+
     /// [`weights`](Self::weights) along both axes of an image `size` pixels wide and
     /// high, bit for bit. Where both footprints fit four lanes (the default Gaussian's
-    /// do unless the sample lies on a pixel centre), the two axes' lanes are evaluated side by side, so their two
-    /// polynomial chains overlap instead of one waiting for the other.
+    /// do unless the sample lies on a pixel centre), the two axes' lanes are evaluated
+    /// side by side, so their two polynomial chains overlap instead of one waiting for
+    /// the other.
     #[inline(always)]
     pub fn weights_xy(
         &self,
@@ -175,22 +183,17 @@ impl PreparedFilter {
         wx: &mut [f32; FOOTPRINT_LANES],
         wy: &mut [f32; FOOTPRINT_LANES],
     ) -> ((u32, usize), (u32, usize)) {
-        let span = |(lo, hi): (i64, i64)| ((hi - lo + 1).max(0) as usize).min(MAX_FOOTPRINT);
-        let (fx, fy) = (
-            self.filter.footprint(p.x, width),
-            self.filter.footprint(p.y, height),
-        );
-        let (nx, ny) = (span(fx), span(fy));
+        let ((xl, nx), (yl, ny)) = (self.span(p.x, width), self.span(p.y, height));
         if nx > 4 || ny > 4 {
             return (self.weights(p.x, width, wx), self.weights(p.y, height, wy));
         }
         let lanes = Vec4::new(0.0, 1.0, 2.0, 3.0);
-        let x = (lanes + (fx.0 as f32 + 0.5)) - p.x;
-        let y = (lanes + (fy.0 as f32 + 0.5)) - p.y;
+        let x = (lanes + (xl as f32 + 0.5)) - p.x;
+        let y = (lanes + (yl as f32 + 0.5)) - p.y;
         let (ex, ey) = self.eval4_pair(x, y);
         ex.write_to_slice(&mut wx[..4]);
         ey.write_to_slice(&mut wy[..4]);
-        ((fx.0 as u32, nx), (fy.0 as u32, ny))
+        ((xl as u32, nx), (yl as u32, ny))
     }
 
     /// The filter at four offsets.

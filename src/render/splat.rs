@@ -30,17 +30,11 @@ pub(super) fn round_splatted(
     let lanes = Lanes::detect();
     let results: Vec<SplatBuffer> = tiles
         .par_iter()
-        .map(|&(x0, y0, x1, y1)| {
-            let bx0 = x0.saturating_sub(reach);
-            let by0 = y0.saturating_sub(reach);
-            let (bx1, by1) = ((x1 + reach).min(w), (y1 + reach).min(h));
-            let mut buf = SplatBuffer::new((bx0, by0, bx1, by1));
-            job.run(
-                (x0, y0, x1, y1),
-                samples.clone(),
-                (seed, w),
-                &mut |_, _, p, l| buf.splat(lanes, &filter, (w, h), p, l),
-            );
+        .map(|&tile| {
+            let mut buf = SplatBuffer::around(tile, reach, (w, h));
+            job.run(tile, samples.clone(), (seed, w), &mut |_, _, p, l| {
+                buf.splat(lanes, &filter, (w, h), p, l)
+            });
             buf
         })
         .collect();
@@ -112,6 +106,18 @@ const PLANES: usize = 8;
 const PAD: usize = 4;
 
 impl SplatBuffer {
+    /// Empty sums for the pixels that samples in `tile` reach with a filter of radius
+    /// at most `reach` pixels, in an image of `w` × `h` pixels: the tile widened by
+    /// `reach` on each side, within the image.
+    fn around((x0, y0, x1, y1): Tile, reach: u32, (w, h): (u32, u32)) -> Self {
+        Self::new((
+            x0.saturating_sub(reach),
+            y0.saturating_sub(reach),
+            (x1 + reach).min(w),
+            (y1 + reach).min(h),
+        ))
+    }
+
     /// Empty sums for the pixels [x0, x1) × [y0, y1).
     fn new((x0, y0, x1, y1): Tile) -> Self {
         let cells = ((x1 - x0) * (y1 - y0)) as usize;
@@ -123,6 +129,11 @@ impl SplatBuffer {
             count: vec![0; cells + PAD],
             sums: vec![0.0; PLANES * (cells + PAD)],
         }
+    }
+
+    /// Length of each plane.
+    fn stride(&self) -> usize {
+        self.cells + PAD
     }
 
     /// Adds the sample (film position `p`, radiance `l`) to every cell that the filter
@@ -170,7 +181,7 @@ impl SplatBuffer {
         // values further on, positive where the footprint was cut at the image's edge).
         wx[nx..].fill(0.0);
         let x = l.as_dvec3();
-        let stride = self.cells + PAD;
+        let stride = self.stride();
         for (j, &wyj) in wy[..ny].iter().enumerate() {
             if wyj <= 0.0 {
                 continue;
@@ -203,7 +214,7 @@ impl SplatBuffer {
 
     /// Cell `i`'s sums as pixel statistics.
     fn stats(&self, i: usize) -> PixelStats {
-        let stride = self.cells + PAD;
+        let stride = self.stride();
         let [w, w2, sx, sy, sz, qx, qy, qz]: [f64; PLANES] =
             std::array::from_fn(|k| self.sums[k * stride + i]);
         let sum = DVec3::new(sx, sy, sz);
@@ -227,7 +238,7 @@ mod tests {
 
     /// The sums of one cell (count, then the eight planes).
     fn cell(buf: &SplatBuffer, i: usize) -> (u32, [f64; PLANES]) {
-        let stride = buf.cells + PAD;
+        let stride = buf.stride();
         (
             buf.count[i],
             std::array::from_fn(|k| buf.sums[k * stride + i]),
@@ -289,16 +300,12 @@ mod tests {
         let mut reached = 0;
         for filter in filters {
             let reach = filter.radius().ceil() as u32;
-            let tile = (
-                x0.saturating_sub(reach),
-                y0.saturating_sub(reach),
-                (x1 + reach).min(w),
-                (y1 + reach).min(h),
-            );
+            let around = || SplatBuffer::around((x0, y0, x1, y1), reach, (w, h));
+            let (mut lanes, mut avx2, mut reference) = (around(), around(), around());
+            let rows = (reference.cells as u32) / reference.width;
+            let (bx0, by0) = (reference.x0, reference.y0);
+            let (bx1, by1) = (bx0 + reference.width, by0 + rows);
             let prepared = filter.prepare();
-            let mut lanes = SplatBuffer::new(tile);
-            let mut avx2 = SplatBuffer::new(tile);
-            let mut reference = SplatBuffer::new(tile);
             for n in 0..400 {
                 // Film positions in the tile's pixels [x0, x1) × [y0, y1), some on
                 // pixel edges and centres exactly.
@@ -317,11 +324,11 @@ mod tests {
                 for (j, &wyj) in wy[..ny].iter().enumerate() {
                     for (k, &wxk) in wx[..nx].iter().enumerate() {
                         let (x, y) = (xl + k as u32, yl + j as u32);
-                        assert!((tile.0..tile.2).contains(&x) && (tile.1..tile.3).contains(&y));
+                        assert!((bx0..bx1).contains(&x) && (by0..by1).contains(&y));
                         let wt = wyj * wxk;
                         if wt > 0.0 {
-                            let i = ((y - tile.1) * reference.width + x - tile.0) as usize;
-                            let stride = reference.cells + PAD;
+                            let i = ((y - by0) * reference.width + x - bx0) as usize;
+                            let stride = reference.stride();
                             let (wt, x) = (wt as f64, l.as_dvec3());
                             let terms = [
                                 wt,
