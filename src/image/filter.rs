@@ -125,6 +125,10 @@ pub const MAX_FOOTPRINT: usize = 33;
 /// arrays [`PreparedFilter::weights`] fills.
 pub const FOOTPRINT_LANES: usize = MAX_FOOTPRINT.next_multiple_of(4);
 
+/// The footprints of a sample along x and along y: each axis's first pixel and number
+/// of pixels.
+pub type Spans = ((u32, usize), (u32, usize));
+
 /// Magnitudes below which rounding through an i32 is exact and cannot overflow.
 const I32_SAFE: f32 = 1.0e9;
 
@@ -182,18 +186,31 @@ impl PreparedFilter {
         (width, height): (u32, u32),
         wx: &mut [f32; FOOTPRINT_LANES],
         wy: &mut [f32; FOOTPRINT_LANES],
-    ) -> ((u32, usize), (u32, usize)) {
+    ) -> Spans {
+        match self.weights_xy4(p, (width, height)) {
+            Some((spans, ex, ey)) => {
+                ex.write_to_slice(&mut wx[..4]);
+                ey.write_to_slice(&mut wy[..4]);
+                spans
+            }
+            None => (self.weights(p.x, width, wx), self.weights(p.y, height, wy)),
+        }
+    }
+
+    /// [`weights_xy`](Self::weights_xy) where both footprints fit four lanes: the two
+    /// spans and the first four lanes of each axis's weights (in registers, with no
+    /// arrays of [`FOOTPRINT_LANES`] to fill); `None` where a footprint is wider.
+    #[inline(always)]
+    pub fn weights_xy4(&self, p: Vec2, (width, height): (u32, u32)) -> Option<(Spans, Vec4, Vec4)> {
         let ((xl, nx), (yl, ny)) = (self.span(p.x, width), self.span(p.y, height));
         if nx > 4 || ny > 4 {
-            return (self.weights(p.x, width, wx), self.weights(p.y, height, wy));
+            return None;
         }
         let lanes = Vec4::new(0.0, 1.0, 2.0, 3.0);
         let x = (lanes + (xl as f32 + 0.5)) - p.x;
         let y = (lanes + (yl as f32 + 0.5)) - p.y;
         let (ex, ey) = self.eval4_pair(x, y);
-        ex.write_to_slice(&mut wx[..4]);
-        ey.write_to_slice(&mut wy[..4]);
-        ((xl as u32, nx), (yl as u32, ny))
+        Some((((xl as u32, nx), (yl as u32, ny)), ex, ey))
     }
 
     /// The filter at four offsets.

@@ -5,7 +5,7 @@
 
 use std::ops::Range;
 
-use glam::{DVec3, Vec2};
+use glam::{DVec3, Vec2, Vec4};
 use rayon::prelude::*;
 
 use super::Tile;
@@ -174,23 +174,51 @@ impl SplatBuffer {
     /// filter is separable); each cell gains w, w², w·x and (w·x)·x with w = w_y·w_x.
     #[inline(always)]
     fn splat_lanes(&mut self, filter: &PreparedFilter, (w, h): (u32, u32), p: Vec2, l: Spectrum) {
+        let x = l.as_dvec3();
+        // Lanes past the footprint add nothing (the filter's values further on are
+        // positive where the footprint was cut at the image's edge).
+        if let Some((((xl, nx), (yl, ny)), ex, ey)) = filter.weights_xy4(p, (w, h)) {
+            // Both footprints fit four lanes (the common case): the weights stay in
+            // registers, one group of four cells per row.
+            let inside = Vec4::new(0.0, 1.0, 2.0, 3.0).cmplt(Vec4::splat(nx as f32));
+            let wx = Vec4::select(inside, ex, Vec4::ZERO).to_array();
+            self.add_rows((xl, yl), &wx, &ey.to_array()[..ny], x);
+            return;
+        }
         let mut wx = [0.0f32; FOOTPRINT_LANES];
         let mut wy = [0.0f32; FOOTPRINT_LANES];
         let ((xl, nx), (yl, ny)) = filter.weights_xy(p, (w, h), &mut wx, &mut wy);
-        // Lanes past the footprint add nothing (`weights` fills them with the filter's
-        // values further on, positive where the footprint was cut at the image's edge).
         wx[nx..].fill(0.0);
-        let x = l.as_dvec3();
+        self.add_rows((xl, yl), &wx[..nx.next_multiple_of(4)], &wy[..ny], x);
+    }
+
+    /// Adds w = `wy[j]`·`wx[i]` and its products with `x` to the cell of pixel
+    /// (`xl` + i, `yl` + j), in groups of four lanes (`wx`'s length is a multiple of
+    /// four; zero weights past the footprint).
+    #[inline(always)]
+    fn add_rows(&mut self, (xl, yl): (u32, u32), wx: &[f32], wy: &[f32], x: DVec3) {
         let stride = self.stride();
-        for (j, &wyj) in wy[..ny].iter().enumerate() {
+        let Self {
+            x0,
+            y0,
+            width,
+            count,
+            sums,
+            ..
+        } = self;
+        // The planes' slices, split once per splat rather than once per row.
+        let mut split = sums.chunks_exact_mut(stride);
+        let mut planes: [&mut [f64]; PLANES] =
+            std::array::from_fn(|_| split.next().expect("PLANES planes"));
+        for (j, &wyj) in wy.iter().enumerate() {
             if wyj <= 0.0 {
                 continue;
             }
-            let row = ((yl + j as u32 - self.y0) * self.width + xl - self.x0) as usize;
-            for (g, wx4) in wx[..nx.next_multiple_of(4)].chunks_exact(4).enumerate() {
+            let row = ((yl + j as u32 - *y0) * *width + xl - *x0) as usize;
+            for (g, wx4) in wx.chunks_exact(4).enumerate() {
                 let at = row + 4 * g;
                 let wt: [f64; 4] = std::array::from_fn(|k| (wyj * wx4[k]) as f64);
-                let planes: [[f64; 4]; PLANES] = [
+                let adds: [[f64; 4]; PLANES] = [
                     wt,
                     wt.map(|w| w * w),
                     wt.map(|w| w * x.x),
@@ -200,12 +228,12 @@ impl SplatBuffer {
                     wt.map(|w| (w * x.y) * x.y),
                     wt.map(|w| (w * x.z) * x.z),
                 ];
-                for (plane, add) in self.sums.chunks_exact_mut(stride).zip(planes) {
+                for (plane, add) in planes.iter_mut().zip(adds) {
                     for (sum, t) in plane[at..at + 4].iter_mut().zip(add) {
                         *sum += t;
                     }
                 }
-                for (n, &w) in self.count[at..at + 4].iter_mut().zip(&wt) {
+                for (n, &w) in count[at..at + 4].iter_mut().zip(&wt) {
                     *n += (w > 0.0) as u32;
                 }
             }
