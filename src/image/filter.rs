@@ -175,31 +175,13 @@ impl PreparedFilter {
     }
 
     /// [`weights`](Self::weights) along both axes of an image `size` pixels wide and
-    /// high, bit for bit. Where both footprints fit four lanes (the default Gaussian's
-    /// do unless the sample lies on a pixel centre), the two axes' lanes are evaluated
-    /// side by side, so their two polynomial chains overlap instead of one waiting for
-    /// the other.
-    #[inline(always)]
-    pub fn weights_xy(
-        &self,
-        p: Vec2,
-        (width, height): (u32, u32),
-        wx: &mut [f32; FOOTPRINT_LANES],
-        wy: &mut [f32; FOOTPRINT_LANES],
-    ) -> Spans {
-        match self.weights_xy4(p, (width, height)) {
-            Some((spans, ex, ey)) => {
-                ex.write_to_slice(&mut wx[..4]);
-                ey.write_to_slice(&mut wy[..4]);
-                spans
-            }
-            None => (self.weights(p.x, width, wx), self.weights(p.y, height, wy)),
-        }
-    }
-
-    /// [`weights_xy`](Self::weights_xy) where both footprints fit four lanes: the two
-    /// spans and the first four lanes of each axis's weights (in registers, with no
-    /// arrays of [`FOOTPRINT_LANES`] to fill); `None` where a footprint is wider.
+    /// high, bit for bit, where both footprints fit four lanes (the default Gaussian's
+    /// do unless a coordinate lies on a pixel centre, where that axis reaches five): the
+    /// two spans and the four lanes of each axis's weights, in registers. The two axes'
+    /// lanes are evaluated side by side, so their two polynomial chains overlap instead
+    /// of one waiting for the other. Lanes from an axis's pixel count on hold the
+    /// filter's values past its footprint (positive where the footprint was cut at the
+    /// image's edge): callers mask them. `None` where a footprint is wider.
     #[inline(always)]
     pub fn weights_xy4(&self, p: Vec2, (width, height): (u32, u32)) -> Option<(Spans, Vec4, Vec4)> {
         let ((xl, nx), (yl, ny)) = (self.span(p.x, width), self.span(p.y, height));
@@ -301,11 +283,9 @@ mod tests {
 
     /// Both axes at once are each axis alone, bit for bit, inside the image, at its
     /// edges and on pixel centres (where the default Gaussian reaches five pixels, the
-    /// outer ones at its radius).
+    /// outer ones at its radius, and both axes are not evaluated side by side).
     #[test]
-    fn weights_xy_are_the_weights_of_each_axis() {
-        // Positions where the default Gaussian reaches five pixels, so that both
-        // axes are not evaluated side by side.
+    fn weights_xy4_are_the_weights_of_each_axis() {
         let mut five = 0;
         for f in FILTERS {
             let prepared = f.prepare();
@@ -315,15 +295,28 @@ mod tests {
                     // On a pixel centre: pixel centres at ± the radius, a fifth pixel.
                     p.x = (i / 100) as f32 + 0.5;
                 }
-                let (mut wx, mut wy) = ([0.0; FOOTPRINT_LANES], [0.0; FOOTPRINT_LANES]);
-                let (sx, sy) = prepared.weights_xy(p, (13, 10), &mut wx, &mut wy);
                 let (mut ax, mut ay) = ([0.0; FOOTPRINT_LANES], [0.0; FOOTPRINT_LANES]);
-                assert_eq!(sx, prepared.weights(p.x, 13, &mut ax), "{f:?} at {p}");
-                assert_eq!(sy, prepared.weights(p.y, 10, &mut ay), "{f:?} at {p}");
+                let (sx, sy) = (
+                    prepared.weights(p.x, 13, &mut ax),
+                    prepared.weights(p.y, 10, &mut ay),
+                );
+                let Some(((fx, fy), ex, ey)) = prepared.weights_xy4(p, (13, 10)) else {
+                    assert!(sx.1.max(sy.1) > 4, "{f:?} at {p}");
+                    five += (f == Filter::GAUSSIAN && sx.1.max(sy.1) == 5) as u32;
+                    continue;
+                };
+                assert_eq!((fx, fy), (sx, sy), "{f:?} at {p}");
                 let bits = |w: &[f32]| w.iter().map(|w| w.to_bits()).collect::<Vec<_>>();
-                assert_eq!(bits(&wx[..sx.1]), bits(&ax[..sx.1]), "{f:?} at {p}");
-                assert_eq!(bits(&wy[..sy.1]), bits(&ay[..sy.1]), "{f:?} at {p}");
-                five += (f == Filter::GAUSSIAN && sx.1.max(sy.1) == 5) as u32;
+                assert_eq!(
+                    bits(&ex.to_array()[..sx.1]),
+                    bits(&ax[..sx.1]),
+                    "{f:?} at {p}"
+                );
+                assert_eq!(
+                    bits(&ey.to_array()[..sy.1]),
+                    bits(&ay[..sy.1]),
+                    "{f:?} at {p}"
+                );
             }
         }
         assert!(five > 10, "{five} five-pixel footprints");

@@ -179,7 +179,11 @@ impl SplatBuffer {
         // positive where the footprint was cut at the image's edge).
         if let Some((((xl, nx), (yl, ny)), ex, ey)) = filter.weights_xy4(p, (w, h)) {
             // Both footprints fit four lanes (the common case): the weights stay in
-            // registers, one group of four cells per row.
+            // registers, one group of four cells per row. A filter narrower than half a
+            // pixel may reach none.
+            if nx == 0 {
+                return;
+            }
             let inside = Vec4::new(0.0, 1.0, 2.0, 3.0).cmplt(Vec4::splat(nx as f32));
             let wx = Vec4::select(inside, ex, Vec4::ZERO).to_array();
             self.add_rows((xl, yl), &wx, &ey.to_array()[..ny], x);
@@ -187,7 +191,10 @@ impl SplatBuffer {
         }
         let mut wx = [0.0f32; FOOTPRINT_LANES];
         let mut wy = [0.0f32; FOOTPRINT_LANES];
-        let ((xl, nx), (yl, ny)) = filter.weights_xy(p, (w, h), &mut wx, &mut wy);
+        let ((xl, nx), (yl, ny)) = (
+            filter.weights(p.x, w, &mut wx),
+            filter.weights(p.y, h, &mut wy),
+        );
         wx[nx..].fill(0.0);
         self.add_rows((xl, yl), &wx[..nx.next_multiple_of(4)], &wy[..ny], x);
     }
@@ -306,8 +313,8 @@ mod tests {
     /// The plane-by-plane sums, with and without AVX2, are bit for bit those of adding
     /// each sample to each cell it reaches with a positive weight, one cell at a time:
     /// tiles at two opposite corners of the image, each buffer widened by the filter's
-    /// reach on its inner sides (as [`round_splatted`] makes it), footprints of 1 to 5
-    /// pixels per axis. (On a processor without AVX2 both buffers take the baseline.)
+    /// reach on its inner sides (as [`round_splatted`] makes it), footprints of 0 to 6
+    /// pixels per axis (both the four-lane path and the wider one). (On a processor without AVX2 both buffers take the baseline.)
     #[test]
     fn lanes_are_the_cell_by_cell_sums() {
         let (w, h) = (13, 11);
@@ -323,6 +330,8 @@ mod tests {
             Filter::GAUSSIAN,
             Filter::Gaussian { stddev: 0.3 },
             Filter::Tent { radius: 2.5 },
+            // Narrower than half a pixel: a sample may reach no pixel at all.
+            Filter::Box { radius: 0.3 },
         ];
         let mut rng = Rng32::new(7);
         let mut reached = 0;
@@ -380,10 +389,12 @@ mod tests {
                 let want = cell(&reference, i);
                 assert_eq!(cell(&lanes, i), want, "{filter:?}, cell {i}");
                 assert_eq!(cell(&avx2, i), want, "{filter:?}, cell {i} (AVX2)");
-                reached += want.0;
+                if filter.radius() >= 0.5 {
+                    reached += want.0;
+                }
             }
         }
-        // Every splat reaches at least its own pixel.
+        // Every splat of the filters at least half a pixel wide reaches its own pixel.
         assert!(reached >= 5 * 400, "{reached} splats");
     }
 }

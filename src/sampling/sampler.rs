@@ -41,10 +41,11 @@ pub const SOBOL_MAX_SAMPLES: u32 = 1 << 16;
 /// direction). Later dimensions are hashed per sample.
 pub const SEEDED_DIMENSIONS: usize = 4;
 
-/// The part of a pixel's sampler streams that every sample of the pixel shares: its key
-/// and, for `sobol`, the hashed seeds of its first [`SEEDED_DIMENSIONS`] dimensions (each
+/// The part of a pixel's sampler streams that every sample of the pixel shares: its key;
+/// for `sobol`, the hashed seeds of its first [`SEEDED_DIMENSIONS`] dimensions (each
 /// dimension's seed depends on the pixel alone, Burley 2020 §4, so its three hashes need
-/// not be redone for every sample). [`Sampler::for_streams`] draws the same numbers as
+/// not be redone for every sample); for `stratified`, the strata's layout for the
+/// render's sample count. [`Sampler::for_streams`] draws the same numbers as
 /// [`Sampler::for_pixel`] with the same key.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct PixelStreams {
@@ -54,14 +55,22 @@ pub struct PixelStreams {
     sample_hash: u64,
     seeded: u32,
     sobol: [SobolSeed; SEEDED_DIMENSIONS],
+    /// The strata of `spp` samples (`stratified`; `n` = 0, no layout, otherwise).
+    rows: EqualAreaRows,
 }
 
 impl PixelStreams {
-    /// The streams of pixel `pixel` (a linear index) under `seed` for a sampler of `kind`.
-    pub fn new(kind: SamplerKind, seed: u64, pixel: u64) -> PixelStreams {
+    /// The streams of pixel `pixel` (a linear index) under `seed` for a sampler of `kind`
+    /// drawing `spp` samples per pixel.
+    pub fn new(kind: SamplerKind, seed: u64, pixel: u64, spp: u32) -> PixelStreams {
         let key = Sampler::pixel_key(seed, pixel);
         let sobol = kind == SamplerKind::Sobol;
         PixelStreams {
+            rows: if kind == SamplerKind::Stratified {
+                EqualAreaRows::new(spp.max(1))
+            } else {
+                EqualAreaRows::default()
+            },
             seeded: if sobol { SEEDED_DIMENSIONS as u32 } else { 0 },
             sobol: std::array::from_fn(|d| {
                 if sobol {
@@ -112,7 +121,8 @@ pub struct Sampler {
     spp: u32,
     dimension: u32,
     rng: Rng32,
-    /// The 2D stratification of `spp` cells (stratified sampler only).
+    /// The 2D stratification of `spp` cells and the permutation's mask (stratified
+    /// sampler only).
     rows: EqualAreaRows,
     /// The hashed Sobol seeds of the first `seeded` dimensions (see [`PixelStreams`]).
     seeded: u32,
@@ -164,10 +174,11 @@ impl Sampler {
                 0
             },
             spp: spp.max(1),
-            rows: if kind == SamplerKind::Stratified {
-                EqualAreaRows::new(spp.max(1))
-            } else {
-                EqualAreaRows::UNUSED
+            rows: match kind {
+                // The pixel's layout where its streams have one for this count.
+                SamplerKind::Stratified if streams.rows.n == spp.max(1) => streams.rows,
+                SamplerKind::Stratified => EqualAreaRows::new(spp.max(1)),
+                _ => EqualAreaRows::UNUSED,
             },
             dimension: 0,
             // Sobol points draw nothing from the PCG stream: skip its three hashes
@@ -215,7 +226,7 @@ impl Sampler {
     /// The jittered stratum of this sample in a 1D or 2D pattern of `spp` cells.
     fn stratified_cell(&mut self) -> (u32, u64) {
         let key = self.dimension_key();
-        (permute(self.sample_index, self.spp, key as u32), key)
+        (self.rows.permute(self.sample_index, key as u32), key)
     }
 }
 
@@ -268,13 +279,16 @@ pub fn equal_area_cell(cell: u32, n: u32, jitter: Vec2) -> Vec2 {
     EqualAreaRows::new(n).cell(cell, jitter)
 }
 
-/// The row layout of [`equal_area_cell`] for `n` cells, computed once per sample rather
-/// than once per dimension (a square root and two integer divisions).
-#[derive(Clone, Copy, Debug)]
+/// The strata of `n` samples: the row layout of [`equal_area_cell`] (a square root and
+/// two integer divisions) and [`permute`]'s bit mask, computed once per pixel
+/// ([`PixelStreams`]) rather than once per sample and per dimension.
+#[derive(Clone, Copy, Debug, Default)]
 struct EqualAreaRows {
     n: u32,
     base: u32,
     extra: u32,
+    /// n − 1's highest bit and every bit below it.
+    mask: u32,
 }
 
 impl EqualAreaRows {
@@ -283,23 +297,34 @@ impl EqualAreaRows {
         n: 1,
         base: 1,
         extra: 0,
+        mask: 0,
     };
 
     fn new(n: u32) -> EqualAreaRows {
         let rows = (n as f32).sqrt() as u32;
-        let rows = rows.clamp(1, n);
+        let rows = rows.clamp(1, n.max(1));
         EqualAreaRows {
             n,
             base: n / rows,
             extra: n % rows,
+            mask: match n.saturating_sub(1) {
+                0 => 0,
+                m => u32::MAX >> m.leading_zeros(),
+            },
         }
     }
 
     /// [`equal_area_cell`] of `cell` in this layout.
     #[inline]
     fn cell(&self, cell: u32, jitter: Vec2) -> Vec2 {
-        let EqualAreaRows { n, base, extra } = *self;
+        let EqualAreaRows { n, base, extra, .. } = *self;
         equal_area_cell_in(cell, n, base, extra, jitter)
+    }
+
+    /// [`permute`] of `i` among the `n` samples under `seed`.
+    #[inline]
+    fn permute(&self, i: u32, seed: u32) -> u32 {
+        permute_masked(i, self.n, self.mask, seed)
     }
 }
 
@@ -328,16 +353,16 @@ fn equal_area_cell_in(cell: u32, n: u32, base: u32, extra: u32, jitter: Vec2) ->
 /// A pseudo-random permutation of 0..n evaluated at `i` (Kensler 2013, "Correlated
 /// Multi-Jittered Sampling", Pixar TM 13-01): a hashed bijection on the next power of
 /// two, cycle-walked back into range.
-pub fn permute(mut i: u32, n: u32, seed: u32) -> u32 {
+pub fn permute(i: u32, n: u32, seed: u32) -> u32 {
+    EqualAreaRows::new(n).permute(i, seed)
+}
+
+/// [`permute`] with its mask `w` (n − 1's highest bit and the bits below) given.
+#[inline]
+fn permute_masked(mut i: u32, n: u32, w: u32, seed: u32) -> u32 {
     if n <= 1 {
         return 0;
     }
-    let mut w = n - 1;
-    w |= w >> 1;
-    w |= w >> 2;
-    w |= w >> 4;
-    w |= w >> 8;
-    w |= w >> 16;
     loop {
         i ^= seed;
         i = i.wrapping_mul(0xe170_893d);
@@ -361,7 +386,9 @@ pub fn permute(mut i: u32, n: u32, seed: u32) -> u32 {
             break;
         }
     }
-    (i.wrapping_add(seed)) % n
+    let i = i.wrapping_add(seed);
+    // n a power of two (the usual sample counts): the remainder is the low bits.
+    if n & w == 0 { i & w } else { i % n }
 }
 
 #[cfg(test)]

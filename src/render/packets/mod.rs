@@ -74,7 +74,8 @@ type BlockPixel = (u32, u32, PixelStreams);
 pub(super) const CHUNK: u32 = 8;
 
 /// Calls `f(sample indices, block)` for samples `samples` of every pixel of `tile` (of an
-/// image `width` pixels wide, streams of a `kind` sampler keyed by `seed`): for each [`BLOCK_WIDTH`] ×
+/// image `width` pixels wide, streams of a `kind` sampler of `spp` samples per pixel keyed
+/// by `seed`): for each [`BLOCK_WIDTH`] ×
 /// [`BLOCK_HEIGHT`] block of the image that the tile covers (blocks aligned to the image,
 /// row by row; the tile's part of it, pixels row by row), the samples in chunks of
 /// [`CHUNK`] consecutive indices.
@@ -83,7 +84,7 @@ fn sample_order(
     (x0, y0, x1, y1): Tile,
     samples: Range<u32>,
     (seed, width): (u64, u32),
-    kind: SamplerKind,
+    (kind, spp): (SamplerKind, u32),
     mut f: impl FnMut(Range<u32>, &[BlockPixel]),
 ) {
     for by in (y0 - y0 % BLOCK_HEIGHT..y1).step_by(BLOCK_HEIGHT as usize) {
@@ -93,7 +94,7 @@ fn sample_order(
             for y in by.max(y0)..(by + BLOCK_HEIGHT).min(y1) {
                 for x in bx.max(x0)..(bx + BLOCK_WIDTH).min(x1) {
                     let pixel = (y * width + x) as u64;
-                    block[n] = (x, y, PixelStreams::new(kind, seed, pixel));
+                    block[n] = (x, y, PixelStreams::new(kind, seed, pixel, spp));
                     n += 1;
                 }
             }
@@ -112,10 +113,10 @@ fn each_sample(
     tile: Tile,
     samples: Range<u32>,
     seed_width: (u64, u32),
-    kind: SamplerKind,
+    kind_spp: (SamplerKind, u32),
     mut f: impl FnMut(u32, u32, &PixelStreams, u32),
 ) {
-    sample_order(tile, samples, seed_width, kind, |chunk, block| {
+    sample_order(tile, samples, seed_width, kind_spp, |chunk, block| {
         for (x, y, streams) in block {
             for s in chunk.clone() {
                 f(*x, *y, streams, s);
@@ -137,7 +138,7 @@ impl<F: Fn(u32, u32, u64, u32) -> (Vec2, Spectrum) + Sync> TileSamples for OneBy
         sink: &mut impl FnMut(u32, u32, Vec2, Spectrum),
     ) {
         // Only the pixel's key is handed on: streams without hashed seeds.
-        let keys_only = SamplerKind::Independent;
+        let keys_only = (SamplerKind::Independent, 0);
         each_sample(tile, samples, seed_width, keys_only, |x, y, streams, s| {
             let (p, l) = (self.0)(x, y, streams.key(), s);
             sink(x, y, p, l);
@@ -190,7 +191,7 @@ impl TileSamples for CameraPackets<'_> {
             self.lanes.is_none() || self.estimator.stages(),
             "light lanes need an estimate in stages"
         );
-        let kind = self.settings.sampler;
+        let kind = (self.settings.sampler, self.settings.spp);
         if single_rays && self.lanes.is_none() {
             each_sample(tile, samples, seed_width, kind, |x, y, streams, s| {
                 let mut p = self.start(x, y, streams, s);

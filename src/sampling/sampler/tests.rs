@@ -15,6 +15,66 @@ fn permute_is_a_bijection() {
     }
 }
 
+/// Kensler's permutation as his note writes it: the mask smeared from n − 1 on every
+/// call, the remainder by division.
+fn kensler_permute(mut i: u32, n: u32, seed: u32) -> u32 {
+    if n <= 1 {
+        return 0;
+    }
+    let mut w = n - 1;
+    for shift in [1, 2, 4, 8, 16] {
+        w |= w >> shift;
+    }
+    loop {
+        i ^= seed;
+        i = i.wrapping_mul(0xe170_893d);
+        i ^= seed >> 16;
+        i ^= (i & w) >> 4;
+        i ^= seed >> 8;
+        i = i.wrapping_mul(0x0929_eb3f);
+        i ^= seed >> 23;
+        i ^= (i & w) >> 1;
+        i = i.wrapping_mul(1 | seed >> 27);
+        i = i.wrapping_mul(0x6935_fa69);
+        i ^= (i & w) >> 11;
+        i = i.wrapping_mul(0x74dc_b303);
+        i ^= (i & w) >> 2;
+        i = i.wrapping_mul(0x9e50_1cc3);
+        i ^= (i & w) >> 2;
+        i = i.wrapping_mul(0xc860_a3df);
+        i &= w;
+        i ^= i >> 5;
+        if i < n {
+            break;
+        }
+    }
+    (i.wrapping_add(seed)) % n
+}
+
+/// The strata's mask, kept per pixel, and the remainder by masking for powers of two
+/// give Kensler's permutation exactly, for powers of two, their neighbours and others.
+#[test]
+fn permute_is_kenslers() {
+    let mut counts: Vec<u32> = (1..=70).collect();
+    for k in 1..=31 {
+        counts.extend([(1u32 << k) - 1, 1 << k, (1u32 << k) + 1]);
+    }
+    counts.push(u32::MAX);
+    for &n in &counts {
+        let strata = EqualAreaRows::new(n);
+        for s in 0..40u32 {
+            let seed = ((s as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15) >> 32) as u32;
+            for i in [0, 1, 2, n / 3, n / 2, n.saturating_sub(1)] {
+                assert_eq!(
+                    strata.permute(i, seed),
+                    kensler_permute(i, n, seed),
+                    "n {n}, i {i}"
+                );
+            }
+        }
+    }
+}
+
 #[test]
 fn equal_area_cells_cover_each_cell_once() {
     for n in [1u32, 2, 3, 5, 8, 16, 17] {
@@ -45,12 +105,14 @@ fn every_sampler_stays_in_unit_interval() {
 }
 
 /// A sampler made from a pixel's streams draws what one made from the pixel's key
-/// draws, for every kind, past the seeded dimensions and past Sobol's last index.
+/// draws, for every kind, past the seeded dimensions and past Sobol's last index, and
+/// with streams laid out for another sample count (72 against 64: not a power of two,
+/// another row layout).
 #[test]
 fn streams_draw_what_the_key_draws() {
     for kind in SamplerKind::ALL {
-        for pixel in [0u64, 5, 1 << 20] {
-            let streams = PixelStreams::new(kind, 11, pixel);
+        for (pixel, laid_out) in [(0u64, 64), (5, 64), (1 << 20, 64), (9, 72)] {
+            let streams = PixelStreams::new(kind, 11, pixel, laid_out);
             assert_eq!(streams.key(), Sampler::pixel_key(11, pixel));
             for s in [0u32, 1, 7, 63, SOBOL_MAX_SAMPLES] {
                 let mut a = Sampler::new(kind, 11, pixel, s, 64);
@@ -70,10 +132,13 @@ fn streams_draw_what_the_key_draws() {
         }
     }
     // The seeds are hashed for Sobol only, and differ from dimension to dimension.
-    let sobol = PixelStreams::new(SamplerKind::Sobol, 11, 5);
+    let sobol = PixelStreams::new(SamplerKind::Sobol, 11, 5, 64);
     assert_eq!(sobol.seeded, SEEDED_DIMENSIONS as u32);
     assert_ne!(sobol.sobol[0], sobol.sobol[1]);
-    assert_eq!(PixelStreams::new(SamplerKind::Stratified, 11, 5).seeded, 0);
+    // The strata's layout is kept for the sample count, for `stratified` only.
+    let strata = PixelStreams::new(SamplerKind::Stratified, 11, 5, 64);
+    assert_eq!((strata.seeded, strata.rows.n), (0, 64));
+    assert_eq!(sobol.rows.n, 0);
 }
 
 /// The independent stream of a sample is PCG32 keyed by hash(pixel key, sample
@@ -82,7 +147,7 @@ fn streams_draw_what_the_key_draws() {
 fn independent_streams_hash_pixel_and_sample_index() {
     for (pixel, s) in [(0u64, 0u32), (5, 1), (1 << 20, 1000), (7, u32::MAX)] {
         let key = Sampler::pixel_key(3, pixel);
-        let streams = PixelStreams::new(SamplerKind::Independent, 3, pixel);
+        let streams = PixelStreams::new(SamplerKind::Independent, 3, pixel, 16);
         let mut a = Sampler::new(SamplerKind::Independent, 3, pixel, s, 16);
         let mut b = Sampler::for_streams(SamplerKind::Independent, &streams, s, 16);
         let mut rng = Rng32::new(hash_words(&[key, s as u64]));
