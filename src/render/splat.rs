@@ -314,7 +314,8 @@ mod tests {
     /// each sample to each cell it reaches with a positive weight, one cell at a time:
     /// tiles at two opposite corners of the image, each buffer widened by the filter's
     /// reach on its inner sides (as [`round_splatted`] makes it), footprints of 0 to 6
-    /// pixels per axis (both the four-lane path and the wider one). (On a processor without AVX2 both buffers take the baseline.)
+    /// pixels per axis (both the four-lane path and the wider one). (On a processor
+    /// without AVX2 both buffers take the baseline.)
     #[test]
     fn lanes_are_the_cell_by_cell_sums() {
         let (w, h) = (13, 11);

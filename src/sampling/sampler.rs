@@ -287,7 +287,7 @@ struct EqualAreaRows {
     n: u32,
     base: u32,
     extra: u32,
-    /// n − 1's highest bit and every bit below it.
+    /// [`permutation_mask`] of `n`.
     mask: u32,
 }
 
@@ -307,10 +307,7 @@ impl EqualAreaRows {
             n,
             base: n / rows,
             extra: n % rows,
-            mask: match n.saturating_sub(1) {
-                0 => 0,
-                m => u32::MAX >> m.leading_zeros(),
-            },
+            mask: permutation_mask(n),
         }
     }
 
@@ -354,7 +351,16 @@ fn equal_area_cell_in(cell: u32, n: u32, base: u32, extra: u32, jitter: Vec2) ->
 /// Multi-Jittered Sampling", Pixar TM 13-01): a hashed bijection on the next power of
 /// two, cycle-walked back into range.
 pub fn permute(i: u32, n: u32, seed: u32) -> u32 {
-    EqualAreaRows::new(n).permute(i, seed)
+    permute_masked(i, n, permutation_mask(n), seed)
+}
+
+/// [`permute`]'s bit mask for `n` samples: n − 1's highest bit and every bit below it
+/// (0 for n ≤ 1).
+fn permutation_mask(n: u32) -> u32 {
+    match n.saturating_sub(1) {
+        0 => 0,
+        m => u32::MAX >> m.leading_zeros(),
+    }
 }
 
 /// [`permute`] with its mask `w` (n − 1's highest bit and the bits below) given.

@@ -75,10 +75,9 @@ pub(super) const CHUNK: u32 = 8;
 
 /// Calls `f(sample indices, block)` for samples `samples` of every pixel of `tile` (of an
 /// image `width` pixels wide, streams of a `kind` sampler of `spp` samples per pixel keyed
-/// by `seed`): for each [`BLOCK_WIDTH`] ×
-/// [`BLOCK_HEIGHT`] block of the image that the tile covers (blocks aligned to the image,
-/// row by row; the tile's part of it, pixels row by row), the samples in chunks of
-/// [`CHUNK`] consecutive indices.
+/// by `seed`): for each [`BLOCK_WIDTH`] × [`BLOCK_HEIGHT`] block of the image that the
+/// tile covers (blocks aligned to the image, row by row; the tile's part of it, pixels
+/// row by row), the samples in chunks of [`CHUNK`] consecutive indices.
 #[inline(always)]
 fn sample_order(
     (x0, y0, x1, y1): Tile,

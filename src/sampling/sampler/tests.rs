@@ -105,18 +105,20 @@ fn every_sampler_stays_in_unit_interval() {
 }
 
 /// A sampler made from a pixel's streams draws what one made from the pixel's key
-/// draws, for every kind, past the seeded dimensions and past Sobol's last index, and
-/// with streams laid out for another sample count (72 against 64: not a power of two,
-/// another row layout).
+/// draws, for every kind, past the seeded dimensions and past Sobol's last index, with
+/// streams laid out for the sample count drawn (64, 72: not a power of two; 0 and 1) and
+/// for another one (72 against 64: another row layout).
 #[test]
 fn streams_draw_what_the_key_draws() {
     for kind in SamplerKind::ALL {
-        for (pixel, laid_out) in [(0u64, 64), (5, 64), (1 << 20, 64), (9, 72)] {
+        let counts = [(0u64, 64, 64), (5, 64, 64), (1 << 20, 64, 64), (9, 72, 64)];
+        let more = [(9, 72, 72), (3, 1, 1), (3, 0, 0)];
+        for (pixel, laid_out, spp) in counts.into_iter().chain(more) {
             let streams = PixelStreams::new(kind, 11, pixel, laid_out);
             assert_eq!(streams.key(), Sampler::pixel_key(11, pixel));
-            for s in [0u32, 1, 7, 63, SOBOL_MAX_SAMPLES] {
-                let mut a = Sampler::new(kind, 11, pixel, s, 64);
-                let mut b = Sampler::for_streams(kind, &streams, s, 64);
+            for s in [0u32, 1, 7, 63, 71, SOBOL_MAX_SAMPLES] {
+                let mut a = Sampler::new(kind, 11, pixel, s, spp);
+                let mut b = Sampler::for_streams(kind, &streams, s, spp);
                 for d in 0..3 * SEEDED_DIMENSIONS {
                     let (x, y) = if d % 3 == 1 {
                         (Vec2::splat(a.next_1d()), Vec2::splat(b.next_1d()))
