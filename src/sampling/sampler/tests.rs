@@ -106,7 +106,7 @@ fn every_sampler_stays_in_unit_interval() {
 
 /// A sampler made from a pixel's streams draws what one made from the pixel's key
 /// draws, for every kind, past the seeded dimensions and past Sobol's last index, with
-/// streams laid out for the sample count drawn (64, 72: not a power of two; 0 and 1) and
+/// streams laid out for the sample count drawn (64; 72, not a power of two; 0 and 1) and
 /// for another one (72 against 64: another row layout).
 #[test]
 fn streams_draw_what_the_key_draws() {
