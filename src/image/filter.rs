@@ -191,7 +191,7 @@ impl PreparedFilter {
         let lanes = Vec4::new(0.0, 1.0, 2.0, 3.0);
         let x = (lanes + (xl as f32 + 0.5)) - p.x;
         let y = (lanes + (yl as f32 + 0.5)) - p.y;
-        let (ex, ey) = self.eval4_pair(x, y);
+        let (ex, ey) = (self.eval4(x), self.eval4(y));
         Some((((xl as u32, nx), (yl as u32, ny)), ex, ey))
     }
 
@@ -204,21 +204,6 @@ impl PreparedFilter {
             }
             Filter::Tent { radius } => (1.0 - x.abs() / radius).max(Vec4::ZERO),
             Filter::Gaussian { .. } => (exp4(self.alpha * x * x) - self.bias).max(Vec4::ZERO),
-        }
-    }
-
-    /// [`eval4`](Self::eval4) at `x` and at `y`, with one choice of the filter.
-    #[inline(always)]
-    fn eval4_pair(&self, x: Vec4, y: Vec4) -> (Vec4, Vec4) {
-        match self.filter {
-            Filter::Gaussian { .. } => {
-                let (ex, ey) = (exp4(self.alpha * x * x), exp4(self.alpha * y * y));
-                (
-                    (ex - self.bias).max(Vec4::ZERO),
-                    (ey - self.bias).max(Vec4::ZERO),
-                )
-            }
-            _ => (self.eval4(x), self.eval4(y)),
         }
     }
 }

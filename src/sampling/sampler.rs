@@ -370,24 +370,7 @@ fn permute_masked(mut i: u32, n: u32, w: u32, seed: u32) -> u32 {
         return 0;
     }
     loop {
-        i ^= seed;
-        i = i.wrapping_mul(0xe170_893d);
-        i ^= seed >> 16;
-        i ^= (i & w) >> 4;
-        i ^= seed >> 8;
-        i = i.wrapping_mul(0x0929_eb3f);
-        i ^= seed >> 23;
-        i ^= (i & w) >> 1;
-        i = i.wrapping_mul(1 | seed >> 27);
-        i = i.wrapping_mul(0x6935_fa69);
-        i ^= (i & w) >> 11;
-        i = i.wrapping_mul(0x74dc_b303);
-        i ^= (i & w) >> 2;
-        i = i.wrapping_mul(0x9e50_1cc3);
-        i ^= (i & w) >> 2;
-        i = i.wrapping_mul(0xc860_a3df);
-        i &= w;
-        i ^= i >> 5;
+        i = kensler_hash(i, w, seed);
         if i < n {
             break;
         }
@@ -395,6 +378,30 @@ fn permute_masked(mut i: u32, n: u32, w: u32, seed: u32) -> u32 {
     let i = i.wrapping_add(seed);
     // n a power of two (the usual sample counts): the remainder is the low bits.
     if n & w == 0 { i & w } else { i % n }
+}
+
+/// One round of Kensler's hash: a bijection on the integers below the power of two
+/// `w` + 1, keyed by `seed` ([`permute`] walks it until the value falls below n).
+#[inline(always)]
+fn kensler_hash(mut i: u32, w: u32, seed: u32) -> u32 {
+    i ^= seed;
+    i = i.wrapping_mul(0xe170_893d);
+    i ^= seed >> 16;
+    i ^= (i & w) >> 4;
+    i ^= seed >> 8;
+    i = i.wrapping_mul(0x0929_eb3f);
+    i ^= seed >> 23;
+    i ^= (i & w) >> 1;
+    i = i.wrapping_mul(1 | seed >> 27);
+    i = i.wrapping_mul(0x6935_fa69);
+    i ^= (i & w) >> 11;
+    i = i.wrapping_mul(0x74dc_b303);
+    i ^= (i & w) >> 2;
+    i = i.wrapping_mul(0x9e50_1cc3);
+    i ^= (i & w) >> 2;
+    i = i.wrapping_mul(0xc860_a3df);
+    i &= w;
+    i ^ (i >> 5)
 }
 
 #[cfg(test)]

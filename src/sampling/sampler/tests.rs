@@ -16,7 +16,7 @@ fn permute_is_a_bijection() {
 }
 
 /// Kensler's permutation as his note writes it: the mask smeared from n − 1 on every
-/// call, the remainder by division.
+/// call, the remainder by division (the hash round itself is shared, [`kensler_hash`]).
 fn kensler_permute(mut i: u32, n: u32, seed: u32) -> u32 {
     if n <= 1 {
         return 0;
@@ -26,24 +26,7 @@ fn kensler_permute(mut i: u32, n: u32, seed: u32) -> u32 {
         w |= w >> shift;
     }
     loop {
-        i ^= seed;
-        i = i.wrapping_mul(0xe170_893d);
-        i ^= seed >> 16;
-        i ^= (i & w) >> 4;
-        i ^= seed >> 8;
-        i = i.wrapping_mul(0x0929_eb3f);
-        i ^= seed >> 23;
-        i ^= (i & w) >> 1;
-        i = i.wrapping_mul(1 | seed >> 27);
-        i = i.wrapping_mul(0x6935_fa69);
-        i ^= (i & w) >> 11;
-        i = i.wrapping_mul(0x74dc_b303);
-        i ^= (i & w) >> 2;
-        i = i.wrapping_mul(0x9e50_1cc3);
-        i ^= (i & w) >> 2;
-        i = i.wrapping_mul(0xc860_a3df);
-        i &= w;
-        i ^= i >> 5;
+        i = kensler_hash(i, w, seed);
         if i < n {
             break;
         }
