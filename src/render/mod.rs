@@ -1,6 +1,7 @@
 //! Rendering: tiles in parallel (rayon), one sampler stream per (seed, pixel, sample),
 //! rounds of samples so a stop request still leaves a whole image, and a progress bar.
 
+mod frustum;
 mod packets;
 mod settings;
 mod spatial;
@@ -129,6 +130,8 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
     };
     // Light samples drawn `LANES` shading points at a time where the lights allow it.
     let lanes = staged::light_lanes(scene, &estimator);
+    // Blocks of pixels whose camera rays all miss the scene skip the traversal.
+    let cull = frustum::FrustumCull::new(&camera, &scene.geometry.bvh().cut(frustum::TOP_BOXES));
     for window in rounds.windows(2) {
         let (s0, s1) = (window[0], window[1]);
         let job = packets::CameraPackets {
@@ -139,6 +142,7 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
             optimal: &optimal,
             invalid: &invalid,
             lanes: lanes.as_ref(),
+            cull: cull.as_ref(),
         };
         if settings.ris_spatial > 0 {
             let job = spatial::Job {

@@ -70,6 +70,12 @@ impl Camera {
         self.to_world
     }
 
+    /// tan(fov_x / 2) and tan(fov_y / 2): the camera-space slopes of the image's edges
+    /// (see [`Camera::ray`]).
+    pub fn tan_half_fov(&self) -> (f32, f32) {
+        (self.tan_half_x, self.tan_half_y)
+    }
+
     /// The horizontal field of view in degrees.
     pub fn fov_x_degrees(&self) -> f32 {
         2.0 * self.tan_half_x.atan().to_degrees()

@@ -134,7 +134,7 @@ render_patch! {
     light_select: LightSelect = flag::LIGHT_SELECT,
     /// Candidates per light sample of `--light-select ris` (1 to 64).
     ris_candidates: u32 = flag::RIS_CANDIDATES,
-    /// Spatial reuse of `--light-select ris` reservoirs: K neighbouring pixels per sample (0 = off, up to 32; Bitterli et al. 2020 with unbiased 1/Z weights).
+    /// Spatial reuse of `--light-select ris` reservoirs: K neighbouring pixels per sample (0 = off, up to 32; Bitterli et al. 2020, neighbours combined with pairwise MIS weights).
     ris_spatial: u32 = flag::RIS_SPATIAL,
     /// Radius in pixels of the disk `--ris-spatial` draws its neighbours from (1 to 256, default 10).
     ris_radius: u32 = flag::RIS_RADIUS,

@@ -214,6 +214,39 @@ impl Bvh {
         traverse::any_hit(&self.nodes, self.depth, ray, t_max, leaf)
     }
 
+    /// At most `max` boxes (but at least the root's children) that together hold every
+    /// primitive: the root's children, then, largest first, inner children replaced by
+    /// their own children while the count allows. For telling where whole bundles of
+    /// rays can meet nothing (`render::frustum`). Empty for an empty tree.
+    pub fn cut(&self, max: usize) -> Vec<Aabb> {
+        let Some(root) = self.nodes.first() else {
+            return Vec::new();
+        };
+        let children = |node: &WideNode| {
+            (0..node::WIDTH)
+                .map(|lane| (node.child_bounds(lane), node.children[lane]))
+                .filter(|(b, _)| !b.is_empty())
+                .collect::<Vec<_>>()
+        };
+        let mut cut = children(root);
+        loop {
+            let largest = (0..cut.len())
+                .filter(|&i| !cut[i].1.is_leaf())
+                .max_by(|&a, &b| {
+                    let area = |i: usize| cut[i].0.surface_area();
+                    area(a).total_cmp(&area(b))
+                });
+            let Some(i) = largest else { break };
+            let inner = children(&self.nodes[cut[i].1.0 as usize]);
+            if cut.len() - 1 + inner.len() > max {
+                break;
+            }
+            cut.swap_remove(i);
+            cut.extend(inner);
+        }
+        cut.into_iter().map(|(b, _)| b).collect()
+    }
+
     /// The box of all primitives (empty for an empty tree).
     pub fn bounds(&self) -> Aabb {
         self.bounds

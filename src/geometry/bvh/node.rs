@@ -91,6 +91,15 @@ impl WideNode {
         self.children[lane] = child;
     }
 
+    /// The box of child `lane` (the empty box where the lane is unused).
+    pub fn child_bounds(&self, lane: usize) -> Aabb {
+        let p = &self.planes;
+        Aabb {
+            min: Vec3::new(p[0][lane], p[1][lane], p[2][lane]),
+            max: Vec3::new(p[3][lane], p[4][lane], p[5][lane]),
+        }
+    }
+
     /// Entry distances of the four lanes; a lane is hit when its entry is below
     /// `f32::INFINITY` (misses return +∞). A box counts as hit when the ray enters it
     /// in [0, t_max].

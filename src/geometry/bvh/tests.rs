@@ -251,3 +251,46 @@ fn a_ray_with_nan_finds_nothing_and_does_not_panic() {
         assert!(hit.is_none());
     }
 }
+
+/// A cut of the tree holds every primitive in one of its boxes, never has more boxes
+/// than asked (when the root's children fit) and fewer than four only where the tree
+/// has fewer leaves, and refines as far as the count allows.
+#[test]
+fn cut_boxes_hold_every_primitive() {
+    let mut rng = Rng32::new(11);
+    for n in [1usize, 3, 4, 17, 500] {
+        let boxes: Vec<Aabb> = (0..n)
+            .map(|_| {
+                let c = point(&mut rng, 10.0);
+                Aabb {
+                    min: c,
+                    max: c + point(&mut rng, 0.3),
+                }
+            })
+            .collect();
+        let bvh = Bvh::build(&boxes);
+        for max in [1, 4, 16, 64] {
+            let cut = bvh.cut(max);
+            assert!(
+                cut.len() <= max.max(4) && !cut.is_empty(),
+                "n {n} max {max}"
+            );
+            assert!(
+                cut.len() >= n.min(max.max(4)).min(4),
+                "n {n} max {max}: {}",
+                cut.len()
+            );
+            for b in &boxes {
+                assert!(
+                    cut.iter()
+                        .any(|c| c.min.cmple(b.min).all() && c.max.cmpge(b.max).all()),
+                    "n {n} max {max}: a primitive outside the cut"
+                );
+            }
+            if n == 500 && max == 64 {
+                assert!(cut.len() > 40, "a deep tree refines: {}", cut.len());
+            }
+        }
+    }
+    assert!(Bvh::build(&[]).cut(16).is_empty());
+}

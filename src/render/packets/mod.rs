@@ -20,6 +20,10 @@
 //! the same distance.) Each sample draws the same numbers as when traced alone, and every
 //! pixel receives its samples in increasing index.
 //!
+//! A block whose pixels the camera cannot see the scene's box through
+//! ([`FrustumCull`]) traces none of its camera rays: their hits are `None`, as the
+//! traversal would have found.
+//!
 //! Where the estimator runs in stages and some light has lanes, a chunk is shaded in
 //! stages instead (see [`super::staged`]); on a tree of one node its camera rays are then
 //! traced one at a time.
@@ -31,6 +35,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 use glam::Vec2;
 
+use super::frustum::FrustumCull;
 use super::staged::Stages;
 use super::{RenderSettings, Tile};
 use crate::geometry::bvh::PACKET;
@@ -160,6 +165,9 @@ pub(super) struct CameraPackets<'a> {
     /// [`stages`](Estimator::stages) and some light has lanes; else every estimate runs
     /// whole, one at a time.
     pub lanes: Option<&'a LightLanes>,
+    /// The scene's box as the camera sees it: the samples of a block of pixels whose
+    /// rays all miss it are not traced (`None`: every ray is traced).
+    pub cull: Option<&'a FrustumCull>,
 }
 
 /// Least depth of the scene's BVH (in wide nodes) for which camera rays are traced in
@@ -192,11 +200,21 @@ impl TileSamples for CameraPackets<'_> {
         );
         let kind = (self.settings.sampler, self.settings.spp);
         if single_rays && self.lanes.is_none() {
-            each_sample(tile, samples, seed_width, kind, |x, y, streams, s| {
-                let mut p = self.start(x, y, streams, s);
-                let hit = self.scene.geometry.intersect(&p.ray, f32::INFINITY);
-                let l = self.radiance(x, y, &p.ray, hit.as_ref(), &mut p.sampler);
-                sink(x, y, p.film, l);
+            // `each_sample`'s order, with the block's culling decided once per chunk.
+            sample_order(tile, samples, seed_width, kind, |chunk, block| {
+                let misses = self.misses(block);
+                for (x, y, streams) in block {
+                    for s in chunk.clone() {
+                        let mut p = self.start(*x, *y, streams, s);
+                        let hit = if misses {
+                            None
+                        } else {
+                            self.scene.geometry.intersect(&p.ray, f32::INFINITY)
+                        };
+                        let l = self.radiance(*x, *y, &p.ray, hit.as_ref(), &mut p.sampler);
+                        sink(*x, *y, p.film, l);
+                    }
+                }
             });
             return;
         }
@@ -207,6 +225,7 @@ impl TileSamples for CameraPackets<'_> {
             Vec::with_capacity(CHUNK as usize * PACKET);
         let mut stages = Stages::default();
         sample_order(tile, samples, seed_width, kind, |chunk, block| {
+            let misses = self.misses(block);
             for s in chunk.clone() {
                 let start = traced.len();
                 traced.extend(
@@ -214,6 +233,10 @@ impl TileSamples for CameraPackets<'_> {
                         .iter()
                         .map(|(x, y, streams)| (self.start(*x, *y, streams, s), None)),
                 );
+                // A block that surely misses leaves every hit `None`.
+                if misses {
+                    continue;
+                }
                 if single_rays {
                     for (p, hit) in &mut traced[start..] {
                         *hit = self.scene.geometry.intersect(&p.ray, f32::INFINITY);
@@ -253,6 +276,21 @@ impl CameraPackets<'_> {
             film,
             ray: self.camera.ray(film),
         }
+    }
+
+    /// Whether every camera ray of `block`'s pixels surely misses the scene (film
+    /// positions of pixel (x, y) lie in [x, x + 1] × [y, y + 1]).
+    #[inline]
+    fn misses(&self, block: &[BlockPixel]) -> bool {
+        let (Some(cull), Some(first)) = (self.cull, block.first()) else {
+            return false;
+        };
+        let (mut x0, mut y0, mut x1, mut y1) = (first.0, first.1, first.0, first.1);
+        for (x, y, _) in block {
+            (x0, y0) = (x0.min(*x), y0.min(*y));
+            (x1, y1) = (x1.max(*x), y1.max(*y));
+        }
+        cull.misses((x0 as f64, y0 as f64), (x1 as f64 + 1.0, y1 as f64 + 1.0))
     }
 
     /// Traces the camera rays of one packet's samples (together when there are several)

@@ -5,6 +5,7 @@ use std::collections::BTreeMap;
 
 use super::*;
 use crate::integrator::{EstimatorKind, MisHeuristic};
+use crate::render::frustum::{FrustumCull, TOP_BOXES};
 use crate::render::staged::light_lanes;
 use crate::scene::load;
 
@@ -83,6 +84,7 @@ fn packets_give_the_samples_of_single_rays() {
             optimal: &optimal_a,
             invalid: &invalid,
             lanes: lanes.as_ref(),
+            cull: None,
         };
         let single = OneByOne(|x: u32, y: u32, key: u64, s: u32| {
             let mut sampler = Sampler::for_pixel(settings.sampler, key, s, settings.spp);
@@ -161,6 +163,7 @@ fn samples_do_not_depend_on_rounds_passes_or_tiles() {
             optimal: &[],
             invalid: &invalid,
             lanes,
+            cull: None,
         };
         let (w, h) = (camera.width, camera.height);
         let key = (settings.seed, w);
@@ -188,5 +191,77 @@ fn samples_do_not_depend_on_rounds_passes_or_tiles() {
         assert_eq!(whole, in_rounds(&passes, &tiles));
         assert_eq!(whole.len(), (w * h) as usize);
         assert!(whole.values().all(|list| list.len() == 12));
+    }
+}
+
+/// The one-ray-at-a-time path (no optimal MIS state) as a [`TileSamples`].
+fn single_rays<'a>(
+    scene: &'a Scene,
+    settings: &'a RenderSettings,
+    camera: &'a Camera,
+    estimator: &'a Estimator,
+) -> OneByOne<impl Fn(u32, u32, u64, u32) -> (Vec2, Spectrum) + Sync + 'a> {
+    OneByOne(move |x: u32, y: u32, key: u64, s: u32| {
+        let mut sampler = Sampler::for_pixel(settings.sampler, key, s, settings.spp);
+        let p = Vec2::new(x as f32, y as f32) + sampler.next_2d();
+        let l = estimator.radiance(scene, &camera.ray(p), &mut sampler);
+        (p, if l.is_finite() { l } else { Spectrum::ZERO })
+    })
+}
+
+/// Blocks whose camera rays all miss the scene are not traced, and every sample keeps
+/// the radiance of the one-ray-at-a-time path, over whole images of scenes with
+/// background around them: rays one at a time (`legacy_v06`, `tent_point`), in
+/// packets with light lanes (`mesh_obj`), and an environment map behind
+/// (`envmap_rotated`). The test fails if a block that some ray sees the scene through
+/// is culled, or if culling is never asked.
+#[test]
+fn culled_blocks_give_the_samples_of_single_rays() {
+    for spec in [
+        "tests/scenes/legacy_v06.xml",
+        "tests/scenes/tent_point.xml",
+        "tests/scenes/mesh_obj.xml",
+        "tests/scenes/envmap_rotated.xml",
+    ] {
+        let scene = load(spec).expect("scene");
+        let mut settings = RenderSettings::for_scene(&scene);
+        settings.resolution = Some((40, 32));
+        let camera = settings.camera(&scene);
+        let estimator = Estimator::new(&scene, settings.estimator, settings.light_select)
+            .with_mis(settings.mis)
+            .with_light_strategy(settings.light_strategy());
+        let boxes = scene.geometry.bvh().cut(TOP_BOXES);
+        let cull = FrustumCull::new(&camera, &boxes).expect("finite boxes");
+        let (w, h) = (camera.width, camera.height);
+        let culled = (0..h / BLOCK_HEIGHT)
+            .flat_map(|by| (0..w / BLOCK_WIDTH).map(move |bx| (bx, by)))
+            .filter(|&(bx, by)| {
+                let (x, y) = ((bx * BLOCK_WIDTH) as f64, (by * BLOCK_HEIGHT) as f64);
+                let size = (BLOCK_WIDTH as f64, BLOCK_HEIGHT as f64);
+                cull.misses((x, y), (x + size.0, y + size.1))
+            })
+            .count();
+        let blocks = (w / BLOCK_WIDTH * (h / BLOCK_HEIGHT)) as usize;
+        assert!(
+            culled > 0 && culled < blocks,
+            "{spec}: {culled} of {blocks} culled"
+        );
+        let invalid = AtomicU64::new(0);
+        let lanes = light_lanes(&scene, &estimator);
+        let packets = CameraPackets {
+            scene: &scene,
+            settings: &settings,
+            camera: &camera,
+            estimator: &estimator,
+            optimal: &[],
+            invalid: &invalid,
+            lanes: lanes.as_ref(),
+            cull: Some(&cull),
+        };
+        let single = single_rays(&scene, &settings, &camera, &estimator);
+        let key = (settings.seed, w);
+        let a = trace(&packets, (0, 0, w, h), 0..3, key);
+        assert_eq!(a.len(), (w * h * 3) as usize);
+        assert_eq!(a, trace(&single, (0, 0, w, h), 0..3, key), "{spec}");
     }
 }
