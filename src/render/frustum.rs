@@ -52,8 +52,9 @@ pub struct FrustumCull {
 
 impl FrustumCull {
     /// The footprint of `boxes` (which together hold everything a ray can hit) on the
-    /// film of `camera`; `None` when a box is not finite or the camera's transform
-    /// cannot be inverted (nothing is culled then). Empty boxes are seen nowhere.
+    /// film of `camera`; `None` when a box that is not empty has an infinite
+    /// coordinate, a box has a NaN one, or the camera's transform cannot be inverted
+    /// (nothing is culled then). Empty boxes (some min above its max) are seen nowhere.
     pub fn new(camera: &Camera, boxes: &[Aabb]) -> Option<FrustumCull> {
         let to_world: DAffine3 = camera.to_world().as_daffine3();
         let to_camera = to_world.inverse();
@@ -66,8 +67,12 @@ impl FrustumCull {
         let mut rects = Vec::with_capacity(boxes.len());
         for b in boxes {
             let (lo, hi) = (b.min.as_dvec3(), b.max.as_dvec3());
-            if lo.cmpgt(hi).any() || lo.is_nan() || hi.is_nan() {
-                continue; // empty: seen nowhere
+            // A NaN lane passes the traversal's slab test: no culling with one.
+            if lo.is_nan() || hi.is_nan() {
+                return None;
+            }
+            if lo.cmpgt(hi).any() {
+                continue; // empty (as `Aabb::EMPTY`, whose bounds are infinite): seen nowhere
             }
             if !(lo.is_finite() && hi.is_finite()) {
                 return None;

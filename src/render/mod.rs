@@ -130,7 +130,8 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
     };
     // Light samples drawn `LANES` shading points at a time where the lights allow it.
     let lanes = staged::light_lanes(scene, &estimator);
-    // Blocks of pixels whose camera rays all miss the scene skip the traversal.
+    // Blocks of pixels whose camera rays all miss the scene skip the traversal (not
+    // under `--ris-spatial`, whose rounds trace their own camera rays).
     let cull = frustum::FrustumCull::new(&camera, &scene.geometry.bvh().cut(frustum::TOP_BOXES));
     for window in rounds.windows(2) {
         let (s0, s1) = (window[0], window[1]);

@@ -215,8 +215,8 @@ impl Bvh {
     }
 
     /// At most `max` boxes (but at least the root's children) that together hold every
-    /// primitive: the root's children, then, largest first, inner children replaced by
-    /// their own children while the count allows. For telling where whole bundles of
+    /// primitive: the root's children, then the inner child of largest area replaced by
+    /// its own children, again and again until the next replacement would pass `max`. For telling where whole bundles of
     /// rays can meet nothing (`render::frustum`). Empty for an empty tree.
     pub fn cut(&self, max: usize) -> Vec<Aabb> {
         let Some(root) = self.nodes.first() else {

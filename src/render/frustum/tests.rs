@@ -39,69 +39,131 @@ fn point(rng: &mut Rng32, r: f32) -> Vec3 {
     )
 }
 
-/// Over random cameras (mirrored ones and ones far from the origin among them), boxes
-/// and rectangles of the film, no ray through a culled rectangle (its corners and 60
-/// points inside) meets the box, however close the box is to the rectangle's cone:
-/// the boxes are placed where the camera looks, so many rectangles are near its edge.
-/// Both decisions are common, so the test sees both sides of every plane.
+/// Where case `case` takes place: every other pair of cases 1 000 units from the
+/// origin (rays and hits are rounded relative to their coordinates).
+fn place(rng: &mut Rng32, case: u32) -> Vec3 {
+    let far = if (case / 2) % 2 == 1 { 1000.0 } else { 0.0 };
+    point(rng, 5.0) + Vec3::X * far
+}
+
+/// A random camera for case `case` within 5 units of `centre`, looking near it, with a
+/// field of view of 5° to 170°: every other one mirrored (as a Mitsuba `scale x="-1"`
+/// makes it).
+fn random_camera(rng: &mut Rng32, case: u32, centre: Vec3) -> Option<Camera> {
+    let eye = centre + point(rng, 5.0);
+    let target = centre + point(rng, 2.0);
+    let up = point(rng, 1.0);
+    if (target - eye).cross(up).length() < 1e-3 * (target - eye).length() {
+        return None;
+    }
+    let (w, h) = (1 + rng.next_u32() % 300, 1 + rng.next_u32() % 200);
+    let fov = uniform(rng, 5.0, 170.0);
+    let look = Camera::look_at(eye, target, up, fov, w, h);
+    Some(if case.is_multiple_of(2) {
+        look
+    } else {
+        let flip = Affine3A::from_scale(Vec3::new(-1.0, 1.0, 1.0));
+        Camera::new(look.to_world() * flip, fov, w, h)
+    })
+}
+
+/// A film rectangle of 1 to 4 × 1 to 2 pixels at a random place of `camera`'s film.
+fn random_rectangle(rng: &mut Rng32, camera: &Camera) -> (Vec2, Vec2) {
+    let x0 = uniform(rng, 0.0, camera.width as f32).floor();
+    let y0 = uniform(rng, 0.0, camera.height as f32).floor();
+    let x1 = x0 + 1.0 + (rng.next_u32() % 4) as f32;
+    let y1 = y0 + 1.0 + (rng.next_u32() % 2) as f32;
+    (Vec2::new(x0, y0), Vec2::new(x1, y1))
+}
+
+fn misses(cull: &FrustumCull, (a, b): (Vec2, Vec2)) -> bool {
+    cull.misses((a.x as f64, a.y as f64), (b.x as f64, b.y as f64))
+}
+
+/// Over random cameras, boxes (flat ones among them, as rectangles' are) and rectangles
+/// of the film, no ray through a culled rectangle (its corners and 60 points inside)
+/// meets the box. The boxes are placed where the camera looks, so that both decisions
+/// are common and the test sees both sides of every plane.
 #[test]
 fn culled_rectangles_have_no_ray_that_meets_the_box() {
     let mut rng = Rng32::new(7);
     let (mut culled, mut kept) = (0, 0);
     for case in 0..4000 {
-        let far = if case % 4 == 3 { 1000.0 } else { 0.0 };
-        let eye = point(&mut rng, 5.0) + Vec3::splat(far);
-        let centre = eye + point(&mut rng, 4.0);
-        let size = Vec3::new(
+        let centre = place(&mut rng, case);
+        let mut size = Vec3::new(
             uniform(&mut rng, 0.001, 3.0),
             uniform(&mut rng, 0.001, 3.0),
             uniform(&mut rng, 0.001, 3.0),
         );
+        if case % 3 == 0 {
+            size[(case / 3 % 3) as usize] = 0.0;
+        }
         let bounds = Aabb {
             min: centre - size,
             max: centre + size,
         };
-        let target = centre + point(&mut rng, 2.0);
-        let up = point(&mut rng, 1.0);
-        if (target - eye).cross(up).length() < 1e-3 {
+        let Some(camera) = random_camera(&mut rng, case, centre) else {
             continue;
-        }
-        let (w, h) = (1 + rng.next_u32() % 300, 1 + rng.next_u32() % 200);
-        let fov = uniform(&mut rng, 5.0, 150.0);
-        let look = Camera::look_at(eye, target, up, fov, w, h);
-        // Every other camera mirrored, as a Mitsuba `scale x="-1"` makes it.
-        let camera = if case % 2 == 0 {
-            look
-        } else {
-            let flip = Affine3A::from_scale(Vec3::new(-1.0, 1.0, 1.0));
-            Camera::new(look.to_world() * flip, fov, w, h)
         };
         let cull = FrustumCull::new(&camera, &[bounds]).expect("a finite box");
-        let x0 = uniform(&mut rng, 0.0, w as f32).floor();
-        let y0 = uniform(&mut rng, 0.0, h as f32).floor();
-        let (x1, y1) = (
-            x0 + 1.0 + (rng.next_u32() % 4) as f32,
-            y0 + 1.0 + (rng.next_u32() % 2) as f32,
-        );
-        if !cull.misses((x0 as f64, y0 as f64), (x1 as f64, y1 as f64)) {
+        let (a, b) = random_rectangle(&mut rng, &camera);
+        if !misses(&cull, (a, b)) {
             kept += 1;
             continue;
         }
         culled += 1;
         let (lo, hi) = (bounds.min.as_dvec3(), bounds.max.as_dvec3());
-        let corners = [(x0, y0), (x1, y0), (x0, y1), (x1, y1)].map(|(x, y)| Vec2::new(x, y));
-        let inside =
-            (0..60).map(|_| Vec2::new(uniform(&mut rng, x0, x1), uniform(&mut rng, y0, y1)));
-        for p in corners.into_iter().chain(inside.collect::<Vec<_>>()) {
+        let corners = [(a.x, a.y), (b.x, a.y), (a.x, b.y), (b.x, b.y)];
+        let inside: Vec<Vec2> = (0..60)
+            .map(|_| Vec2::new(uniform(&mut rng, a.x, b.x), uniform(&mut rng, a.y, b.y)))
+            .collect();
+        for p in corners
+            .map(|(x, y)| Vec2::new(x, y))
+            .into_iter()
+            .chain(inside)
+        {
             let ray = camera.ray(p);
             assert!(
                 !ray_meets_box(ray.o.as_dvec3(), ray.d.as_dvec3(), lo, hi),
-                "case {case}: the ray through {p} meets a box the rectangle \
-                 [{x0}, {x1}] × [{y0}, {y1}] culled"
+                "case {case}: the ray through {p} meets a box the rectangle {a}–{b} culled"
             );
         }
     }
     assert!(culled > 1000 && kept > 1000, "culled {culled}, kept {kept}");
+}
+
+/// A box that a ray through the edge or corner of a rectangle meets (a point box on
+/// that ray, the tightest case: its projection is the edge itself, up to rounding) is
+/// never culled with the rectangle. Without the margins about half the cases fail.
+#[test]
+fn boxes_met_on_a_rectangle_edge_are_kept() {
+    let mut rng = Rng32::new(13);
+    let mut tested = 0;
+    for case in 0..4000 {
+        let centre = place(&mut rng, case);
+        let Some(camera) = random_camera(&mut rng, case, centre) else {
+            continue;
+        };
+        let (a, b) = random_rectangle(&mut rng, &camera);
+        // A point of the rectangle's boundary: a corner, or on one of its edges.
+        let t = uniform(&mut rng, 0.0, 1.0);
+        let p = match case % 5 {
+            0 => Vec2::new(a.x, a.y + (b.y - a.y) * t),
+            1 => Vec2::new(b.x, a.y + (b.y - a.y) * t),
+            2 => Vec2::new(a.x + (b.x - a.x) * t, a.y),
+            3 => Vec2::new(a.x + (b.x - a.x) * t, b.y),
+            _ => Vec2::new(b.x, b.y),
+        };
+        let ray = camera.ray(p);
+        let q = ray.o + ray.d * uniform(&mut rng, 0.01, 50.0);
+        let cull = FrustumCull::new(&camera, &[Aabb { min: q, max: q }]).expect("finite");
+        assert!(
+            !misses(&cull, (a, b)),
+            "case {case}: the point {q} on the ray through {p} is culled with {a}–{b}"
+        );
+        tested += 1;
+    }
+    assert!(tested > 3500, "{tested} cases");
 }
 
 /// A box in the middle of the view is seen through the middle of the film and not
@@ -149,4 +211,9 @@ fn boxes_out_of_view_are_culled() {
         max: Vec3::ZERO,
     };
     assert!(FrustumCull::new(&camera, &[infinite]).is_none());
+    let nan = Aabb {
+        min: Vec3::new(0.0, f32::NAN, 0.0),
+        max: Vec3::ONE,
+    };
+    assert!(FrustumCull::new(&camera, &[nan]).is_none());
 }

@@ -20,9 +20,9 @@
 //! the same distance.) Each sample draws the same numbers as when traced alone, and every
 //! pixel receives its samples in increasing index.
 //!
-//! A block whose pixels the camera cannot see the scene's box through
-//! ([`FrustumCull`]) traces none of its camera rays: their hits are `None`, as the
-//! traversal would have found.
+//! A block through whose pixels the camera sees none of the boxes at the top of the
+//! scene's BVH ([`FrustumCull`]) traces none of its camera rays: their hits are `None`,
+//! as the traversal would have found.
 //!
 //! Where the estimator runs in stages and some light has lanes, a chunk is shaded in
 //! stages instead (see [`super::staged`]); on a tree of one node its camera rays are then
@@ -165,8 +165,9 @@ pub(super) struct CameraPackets<'a> {
     /// [`stages`](Estimator::stages) and some light has lanes; else every estimate runs
     /// whole, one at a time.
     pub lanes: Option<&'a LightLanes>,
-    /// The scene's box as the camera sees it: the samples of a block of pixels whose
-    /// rays all miss it are not traced (`None`: every ray is traced).
+    /// Where on the film the camera may see the scene (its top BVH boxes): the camera
+    /// rays of a block of pixels that sees none of it are not traced (`None`: every ray
+    /// is traced).
     pub cull: Option<&'a FrustumCull>,
 }
 
@@ -220,7 +221,7 @@ impl TileSamples for CameraPackets<'_> {
         }
         // A chunk's samples with their camera hits, sample index by sample index (one
         // packet each, or one ray at a time on a tree of one node, where only the staged
-        // shading comes here), the block's pixels within each.
+        // shading comes here; none for a culled block), the block's pixels within each.
         let mut traced: Vec<(Pending, Option<SurfaceHit>)> =
             Vec::with_capacity(CHUNK as usize * PACKET);
         let mut stages = Stages::default();

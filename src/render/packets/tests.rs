@@ -4,6 +4,7 @@
 use std::collections::BTreeMap;
 
 use super::*;
+use crate::geometry::Aabb;
 use crate::integrator::{EstimatorKind, MisHeuristic};
 use crate::render::frustum::{FrustumCull, TOP_BOXES};
 use crate::render::staged::light_lanes;
@@ -212,9 +213,9 @@ fn single_rays<'a>(
 /// Blocks whose camera rays all miss the scene are not traced, and every sample keeps
 /// the radiance of the one-ray-at-a-time path, over whole images of scenes with
 /// background around them: rays one at a time (`legacy_v06`, `tent_point`), in
-/// packets with light lanes (`mesh_obj`), and an environment map behind
-/// (`envmap_rotated`). The test fails if a block that some ray sees the scene through
-/// is culled, or if culling is never asked.
+/// packets with light lanes and without (`mesh_obj`), and an environment map behind
+/// (`envmap_rotated`). Some but not all blocks are culled; and with a footprint that
+/// culls every block, the samples change (so each path asks the footprint).
 #[test]
 fn culled_blocks_give_the_samples_of_single_rays() {
     for spec in [
@@ -246,22 +247,32 @@ fn culled_blocks_give_the_samples_of_single_rays() {
             culled > 0 && culled < blocks,
             "{spec}: {culled} of {blocks} culled"
         );
+        let nothing = FrustumCull::new(&camera, &[Aabb::EMPTY]).expect("an empty box");
         let invalid = AtomicU64::new(0);
         let lanes = light_lanes(&scene, &estimator);
-        let packets = CameraPackets {
-            scene: &scene,
-            settings: &settings,
-            camera: &camera,
-            estimator: &estimator,
-            optimal: &[],
-            invalid: &invalid,
-            lanes: lanes.as_ref(),
-            cull: Some(&cull),
-        };
         let single = single_rays(&scene, &settings, &camera, &estimator);
         let key = (settings.seed, w);
-        let a = trace(&packets, (0, 0, w, h), 0..3, key);
-        assert_eq!(a.len(), (w * h * 3) as usize);
-        assert_eq!(a, trace(&single, (0, 0, w, h), 0..3, key), "{spec}");
+        let expected = trace(&single, (0, 0, w, h), 0..3, key);
+        assert_eq!(expected.len(), (w * h * 3) as usize);
+        let mut runs = vec![lanes.as_ref()];
+        if lanes.is_some() {
+            runs.push(None);
+        }
+        for lanes in runs {
+            let packets = |cull| CameraPackets {
+                scene: &scene,
+                settings: &settings,
+                camera: &camera,
+                estimator: &estimator,
+                optimal: &[],
+                invalid: &invalid,
+                lanes,
+                cull: Some(cull),
+            };
+            let culled = trace(&packets(&cull), (0, 0, w, h), 0..3, key);
+            assert_eq!(culled, expected, "{spec}, lanes {}", lanes.is_some());
+            let all = trace(&packets(&nothing), (0, 0, w, h), 0..3, key);
+            assert_ne!(all, expected, "{spec}: the footprint is not asked");
+        }
     }
 }
