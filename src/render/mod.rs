@@ -144,6 +144,7 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
             invalid: &invalid,
             lanes: lanes.as_ref(),
             cull: cull.as_ref(),
+            positions: !settings.filter.is_pixel_box(),
         };
         if settings.ris_spatial > 0 {
             let job = spatial::Job {

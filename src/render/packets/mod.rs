@@ -22,7 +22,9 @@
 //!
 //! A block through whose pixels the camera sees none of the boxes at the top of the
 //! scene's BVH ([`FrustumCull`]) traces none of its camera rays: their hits are `None`,
-//! as the traversal would have found.
+//! as the traversal would have found. In a scene without an environment such samples
+//! bring no light at all: no camera ray is made, and the film position is drawn only
+//! for a filter that uses it.
 //!
 //! Where the estimator runs in stages and some light has lanes, a chunk is shaded in
 //! stages instead (see [`super::staged`]); on a tree of one node its camera rays are then
@@ -169,6 +171,11 @@ pub(super) struct CameraPackets<'a> {
     /// rays of a block of pixels that sees none of it are not traced (`None`: every ray
     /// is traced).
     pub cull: Option<&'a FrustumCull>,
+    /// Whether the sink uses film positions (every filter but the one-pixel box, whose
+    /// samples go to their own pixel whatever their position). Where it does not, the
+    /// samples of a block that sees nothing in a scene without an environment are
+    /// handed on with their pixel's centre instead of a drawn position.
+    pub positions: bool,
 }
 
 /// Least depth of the scene's BVH (in wide nodes) for which camera rays are traced in
@@ -204,6 +211,9 @@ impl TileSamples for CameraPackets<'_> {
             // `each_sample`'s order, with the block's culling decided once per chunk.
             sample_order(tile, samples, seed_width, kind, |chunk, block| {
                 let misses = self.misses(block);
+                if misses && self.scene.environment.is_none() {
+                    return self.dark(chunk, block, sink);
+                }
                 for (x, y, streams) in block {
                     for s in chunk.clone() {
                         let mut p = self.start(*x, *y, streams, s);
@@ -227,6 +237,9 @@ impl TileSamples for CameraPackets<'_> {
         let mut stages = Stages::default();
         sample_order(tile, samples, seed_width, kind, |chunk, block| {
             let misses = self.misses(block);
+            if misses && self.scene.environment.is_none() {
+                return self.dark(chunk, block, sink);
+            }
             for s in chunk.clone() {
                 let start = traced.len();
                 traced.extend(
@@ -267,15 +280,46 @@ impl CameraPackets<'_> {
     /// position it draws first, and its camera ray.
     #[inline(always)]
     fn start(&self, x: u32, y: u32, streams: &PixelStreams, s: u32) -> Pending {
-        let (kind, spp) = (self.settings.sampler, self.settings.spp);
-        let mut sampler = Sampler::for_streams(kind, streams, s, spp);
-        let film = Vec2::new(x as f32, y as f32) + sampler.next_2d();
+        let (sampler, film) = self.film_position(x, y, streams, s);
         Pending {
             x,
             y,
             sampler,
             film,
             ray: self.camera.ray(film),
+        }
+    }
+
+    /// Sample `s` of pixel (x, y) (its streams `streams`): its stream and the film
+    /// position it draws first.
+    #[inline(always)]
+    fn film_position(&self, x: u32, y: u32, streams: &PixelStreams, s: u32) -> (Sampler, Vec2) {
+        let (kind, spp) = (self.settings.sampler, self.settings.spp);
+        let mut sampler = Sampler::for_streams(kind, streams, s, spp);
+        let film = Vec2::new(x as f32, y as f32) + sampler.next_2d();
+        (sampler, film)
+    }
+
+    /// Hands on samples `chunk` of a block that sees nothing, in a scene without an
+    /// environment, in [`each_sample`]'s order: every radiance is zero (what an escaped
+    /// ray brings), and no camera ray is made. The film positions are drawn only where
+    /// the sink uses them ([`CameraPackets::positions`]); otherwise each sample goes
+    /// with its pixel's centre.
+    fn dark(
+        &self,
+        chunk: Range<u32>,
+        block: &[BlockPixel],
+        sink: &mut impl FnMut(u32, u32, Vec2, Spectrum),
+    ) {
+        for (x, y, streams) in block {
+            for s in chunk.clone() {
+                let film = if self.positions {
+                    self.film_position(*x, *y, streams, s).1
+                } else {
+                    Vec2::new(*x as f32 + 0.5, *y as f32 + 0.5)
+                };
+                sink(*x, *y, film, Spectrum::ZERO);
+            }
         }
     }
 

@@ -86,6 +86,7 @@ fn packets_give_the_samples_of_single_rays() {
             invalid: &invalid,
             lanes: lanes.as_ref(),
             cull: None,
+            positions: true,
         };
         let single = OneByOne(|x: u32, y: u32, key: u64, s: u32| {
             let mut sampler = Sampler::for_pixel(settings.sampler, key, s, settings.spp);
@@ -165,6 +166,7 @@ fn samples_do_not_depend_on_rounds_passes_or_tiles() {
             invalid: &invalid,
             lanes,
             cull: None,
+            positions: true,
         };
         let (w, h) = (camera.width, camera.height);
         let key = (settings.seed, w);
@@ -215,7 +217,9 @@ fn single_rays<'a>(
 /// background around them: rays one at a time (`legacy_v06`, `tent_point`), in
 /// packets with light lanes and without (`mesh_obj`), and an environment map behind
 /// (`envmap_rotated`). Some but not all blocks are culled; and with a footprint that
-/// culls every block, the samples change (so each path asks the footprint).
+/// culls every block, the samples change (so each path asks the footprint). Where the
+/// sink takes no film positions, culled samples of a scene without an environment go
+/// with their pixel's centre and zero radiance, the radiance they would have had.
 #[test]
 fn culled_blocks_give_the_samples_of_single_rays() {
     for spec in [
@@ -259,7 +263,7 @@ fn culled_blocks_give_the_samples_of_single_rays() {
             runs.push(None);
         }
         for lanes in runs {
-            let packets = |cull| CameraPackets {
+            let packets = |cull, positions| CameraPackets {
                 scene: &scene,
                 settings: &settings,
                 camera: &camera,
@@ -268,11 +272,22 @@ fn culled_blocks_give_the_samples_of_single_rays() {
                 invalid: &invalid,
                 lanes,
                 cull: Some(cull),
+                positions,
             };
-            let culled = trace(&packets(&cull), (0, 0, w, h), 0..3, key);
+            let culled = trace(&packets(&cull, true), (0, 0, w, h), 0..3, key);
             assert_eq!(culled, expected, "{spec}, lanes {}", lanes.is_some());
-            let all = trace(&packets(&nothing), (0, 0, w, h), 0..3, key);
+            let all = trace(&packets(&nothing, true), (0, 0, w, h), 0..3, key);
             assert_ne!(all, expected, "{spec}: the footprint is not asked");
+            // Without film positions (the one-pixel box filter) only they may differ,
+            // and only where the scene has no environment to be seen.
+            let no_positions = trace(&packets(&cull, false), (0, 0, w, h), 0..3, key);
+            let unplaced = |t: &Trace| -> Vec<_> { t.iter().map(|s| (s.0, s.1, s.3)).collect() };
+            assert_eq!(unplaced(&no_positions), unplaced(&expected), "{spec}");
+            if scene.environment.is_some() {
+                assert_eq!(no_positions, expected, "{spec}");
+            } else {
+                assert_ne!(no_positions, expected, "{spec}: positions were drawn");
+            }
         }
     }
 }
