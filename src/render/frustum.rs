@@ -13,7 +13,8 @@
 //! scene's BVH ([`Bvh::cut`](crate::geometry::bvh::Bvh::cut)), which hold every
 //! primitive, so where a block of pixels meets none of their rectangles no ray of its
 //! samples meets anything: they skip the traversal, and their hit is `None`, which is
-//! what the traversal would have found.
+//! what the traversal would have found (and in a scene without an environment they skip
+//! the rest of the sample too, see `render::packets`).
 //!
 //! The rectangles are conservative by a wide margin over the f32 rounding of the rays
 //! and of the hits (relative errors of about 10⁻⁶): they are computed in f64, from boxes

@@ -130,8 +130,9 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
     };
     // Light samples drawn `LANES` shading points at a time where the lights allow it.
     let lanes = staged::light_lanes(scene, &estimator);
-    // Blocks of pixels whose camera rays all miss the scene skip the traversal (not
-    // under `--ris-spatial`, whose rounds trace their own camera rays).
+    // Blocks of pixels whose camera rays all miss the scene skip the traversal, and
+    // without an environment the whole sample but its film position (not under
+    // `--ris-spatial`, whose rounds trace their own camera rays).
     let cull = frustum::FrustumCull::new(&camera, &scene.geometry.bvh().cut(frustum::TOP_BOXES));
     for window in rounds.windows(2) {
         let (s0, s1) = (window[0], window[1]);
@@ -357,6 +358,58 @@ mod tests {
                 assert!(b.windows(2).all(|w| w[0] < w[1]) && b.len() <= 9);
             }
         }
+    }
+
+    /// A splatted render whose camera sees black around the scene (`tent_point`: a tent
+    /// filter, culled blocks) gives the film of the one-ray-at-a-time path bit for bit:
+    /// the culled samples' film positions are drawn and their zeros splatted where they
+    /// fall. (Handing them on at their pixel's centre, as the one-pixel box may, changes
+    /// the film.)
+    #[test]
+    fn culled_splatted_render_is_the_one_ray_render() {
+        use crate::sampling::{Sampler, Uniform};
+        let scene = crate::scene::load("tests/scenes/tent_point.xml").expect("scene");
+        let mut settings = RenderSettings::for_scene(&scene);
+        settings.resolution = Some((40, 32));
+        settings.spp = 5;
+        assert!(!settings.filter.is_pixel_box());
+        let rendered = render_quiet(&scene, &settings).film;
+        let camera = settings.camera(&scene);
+        let (w, h) = (camera.width, camera.height);
+        assert_eq!(round_boundaries(0, 5, (w * h) as u64, false), [0, 5]);
+        let estimator = Estimator::new(&scene, settings.estimator, settings.light_select)
+            .with_mis(settings.mis)
+            .with_light_strategy(settings.light_strategy());
+        let one_by_one = packets::OneByOne(|x: u32, y: u32, key: u64, s: u32| {
+            let mut sampler = Sampler::for_pixel(settings.sampler, key, s, settings.spp);
+            let p = glam::Vec2::new(x as f32, y as f32) + sampler.next_2d();
+            let l = estimator.radiance(&scene, &camera.ray(p), &mut sampler);
+            (
+                p,
+                if l.is_finite() {
+                    l
+                } else {
+                    crate::math::Spectrum::ZERO
+                },
+            )
+        });
+        let mut film = Film::new(w, h);
+        let tiles = tiles(w, h, tile_size(w, h));
+        splat::round_splatted(
+            &mut film,
+            &tiles,
+            0..5,
+            settings.seed,
+            settings.filter,
+            &one_by_one,
+        );
+        let bits = |f: &Film| -> Vec<[u32; 3]> {
+            f.pixels
+                .iter()
+                .map(|p| p.mean.to_array().map(f32::to_bits))
+                .collect()
+        };
+        assert_eq!(bits(&rendered), bits(&film));
     }
 
     #[test]

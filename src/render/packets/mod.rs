@@ -17,8 +17,9 @@
 //! that sample. (An earlier version packed eight consecutive samples in film order, so the
 //! packets changed with the rounds, and a 3-pass render of `mesh_obj` merged to one pixel
 //! 16 % away from the single render: two coplanar faces of different materials, met at
-//! the same distance.) Each sample draws the same numbers as when traced alone, and every
-//! pixel receives its samples in increasing index.
+//! the same distance.) Each sample draws the same numbers as when traced alone (but for
+//! the culled samples below that draw none), and every pixel receives its samples in
+//! increasing index.
 //!
 //! A block through whose pixels the camera sees none of the boxes at the top of the
 //! scene's BVH ([`FrustumCull`]) traces none of its camera rays: their hits are `None`,
@@ -53,7 +54,8 @@ use crate::scene::{Camera, Scene};
 pub(super) trait TileSamples: Sync {
     /// Samples `samples` of every pixel of `tile` (of an image `width` pixels wide,
     /// streams keyed by `seed`), in [`sample_order`]: `sink(x, y, film position,
-    /// radiance)`.
+    /// radiance)`. (Where [`CameraPackets::positions`] is false, a sample that surely
+    /// sees nothing may come with its pixel's centre instead of its own position.)
     fn run(
         &self,
         tile: Tile,
@@ -231,7 +233,8 @@ impl TileSamples for CameraPackets<'_> {
         }
         // A chunk's samples with their camera hits, sample index by sample index (one
         // packet each, or one ray at a time on a tree of one node, where only the staged
-        // shading comes here; none for a culled block), the block's pixels within each.
+        // shading comes here; none for a culled block, which comes here only in a scene
+        // with an environment), the block's pixels within each.
         let mut traced: Vec<(Pending, Option<SurfaceHit>)> =
             Vec::with_capacity(CHUNK as usize * PACKET);
         let mut stages = Stages::default();
@@ -247,7 +250,8 @@ impl TileSamples for CameraPackets<'_> {
                         .iter()
                         .map(|(x, y, streams)| (self.start(*x, *y, streams, s), None)),
                 );
-                // A block that surely misses leaves every hit `None`.
+                // A block that surely misses leaves every hit `None` (the environment's
+                // light comes from `radiance`).
                 if misses {
                     continue;
                 }

@@ -197,29 +197,15 @@ fn samples_do_not_depend_on_rounds_passes_or_tiles() {
     }
 }
 
-/// The one-ray-at-a-time path (no optimal MIS state) as a [`TileSamples`].
-fn single_rays<'a>(
-    scene: &'a Scene,
-    settings: &'a RenderSettings,
-    camera: &'a Camera,
-    estimator: &'a Estimator,
-) -> OneByOne<impl Fn(u32, u32, u64, u32) -> (Vec2, Spectrum) + Sync + 'a> {
-    OneByOne(move |x: u32, y: u32, key: u64, s: u32| {
-        let mut sampler = Sampler::for_pixel(settings.sampler, key, s, settings.spp);
-        let p = Vec2::new(x as f32, y as f32) + sampler.next_2d();
-        let l = estimator.radiance(scene, &camera.ray(p), &mut sampler);
-        (p, if l.is_finite() { l } else { Spectrum::ZERO })
-    })
-}
-
 /// Blocks whose camera rays all miss the scene are not traced, and every sample keeps
-/// the radiance of the one-ray-at-a-time path, over whole images of scenes with
+/// the film position and radiance it has without culling (bit for bit; the packets'
+/// own agreement with single rays is the test above), over whole images of scenes with
 /// background around them: rays one at a time (`legacy_v06`, `tent_point`), in
 /// packets with light lanes and without (`mesh_obj`), and an environment map behind
 /// (`envmap_rotated`). Some but not all blocks are culled; and with a footprint that
 /// culls every block, the samples change (so each path asks the footprint). Where the
 /// sink takes no film positions, culled samples of a scene without an environment go
-/// with their pixel's centre and zero radiance, the radiance they would have had.
+/// with zero radiance, the radiance they would have had, and another position.
 #[test]
 fn culled_blocks_give_the_samples_of_single_rays() {
     for spec in [
@@ -254,10 +240,9 @@ fn culled_blocks_give_the_samples_of_single_rays() {
         let nothing = FrustumCull::new(&camera, &[Aabb::EMPTY]).expect("an empty box");
         let invalid = AtomicU64::new(0);
         let lanes = light_lanes(&scene, &estimator);
-        let single = single_rays(&scene, &settings, &camera, &estimator);
         let key = (settings.seed, w);
-        let expected = trace(&single, (0, 0, w, h), 0..3, key);
-        assert_eq!(expected.len(), (w * h * 3) as usize);
+        // Samples 5..19: a partial chunk, a whole one and a partial one again.
+        let samples = 5..19;
         let mut runs = vec![lanes.as_ref()];
         if lanes.is_some() {
             runs.push(None);
@@ -274,13 +259,19 @@ fn culled_blocks_give_the_samples_of_single_rays() {
                 cull: Some(cull),
                 positions,
             };
-            let culled = trace(&packets(&cull, true), (0, 0, w, h), 0..3, key);
+            let plain = CameraPackets {
+                cull: None,
+                ..packets(&cull, true)
+            };
+            let expected = trace(&plain, (0, 0, w, h), samples.clone(), key);
+            assert_eq!(expected.len(), (w * h * 14) as usize);
+            let culled = trace(&packets(&cull, true), (0, 0, w, h), samples.clone(), key);
             assert_eq!(culled, expected, "{spec}, lanes {}", lanes.is_some());
-            let all = trace(&packets(&nothing, true), (0, 0, w, h), 0..3, key);
+            let all = trace(&packets(&nothing, true), (0, 0, w, h), samples.clone(), key);
             assert_ne!(all, expected, "{spec}: the footprint is not asked");
             // Without film positions (the one-pixel box filter) only they may differ,
             // and only where the scene has no environment to be seen.
-            let no_positions = trace(&packets(&cull, false), (0, 0, w, h), 0..3, key);
+            let no_positions = trace(&packets(&cull, false), (0, 0, w, h), samples.clone(), key);
             let unplaced = |t: &Trace| -> Vec<_> { t.iter().map(|s| (s.0, s.1, s.3)).collect() };
             assert_eq!(unplaced(&no_positions), unplaced(&expected), "{spec}");
             if scene.environment.is_some() {
