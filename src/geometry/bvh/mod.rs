@@ -216,8 +216,9 @@ impl Bvh {
 
     /// At most `max` boxes (but at least the root's children) that together hold every
     /// primitive: the root's children, then the inner child of largest area replaced by
-    /// its own children, again and again until the next replacement would pass `max`. For telling where whole bundles of
-    /// rays can meet nothing (`render::frustum`). Empty for an empty tree.
+    /// its own children, again and again until the next replacement would pass `max`.
+    /// For telling where whole bundles of rays can meet nothing (`render::frustum`).
+    /// Empty for an empty tree.
     pub fn cut(&self, max: usize) -> Vec<Aabb> {
         let Some(root) = self.nodes.first() else {
             return Vec::new();
