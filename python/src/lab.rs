@@ -3,11 +3,10 @@
 //! (their tables as lists of dicts, their reports written to a folder).
 
 use std::path::PathBuf;
-use std::time::Duration;
 
 use lightlab::image::metrics::compare as metrics;
 use lightlab::image::tev;
-use lightlab::lab::budget::Budget;
+use lightlab::lab::budget::{Budget, time_budget};
 use lightlab::lab::compare::{CompareConfig, run_compare};
 use lightlab::lab::converge::{ConvergeConfig, run_converge};
 use lightlab::lab::experiment::ReferenceSource;
@@ -171,8 +170,9 @@ pub fn compare<'py>(
     let budget = match (spp, time) {
         (Some(0), _) => return Err(value_error("spp=0: need at least 1")),
         (Some(n), None) => Budget::Spp(n),
-        (None, Some(t)) if t.is_finite() && t > 0.0 => Budget::Time(Duration::from_secs_f64(t)),
-        (None, Some(t)) => return Err(value_error(format!("time={t}: must be positive"))),
+        (None, Some(t)) => {
+            Budget::Time(time_budget(t).map_err(|e| value_error(format!("time={t}: {e}")))?)
+        }
         _ => return Err(value_error("give spp=N or time=SECONDS (one of them)")),
     };
     let config = CompareConfig {

@@ -2,14 +2,13 @@
 //! -o DIR`.
 
 use std::path::PathBuf;
-use std::time::Duration;
 
 use clap::Args;
 
 use super::CliError;
 use super::lab_args::LabRenderArgs;
 use super::render::{STOP, install_stop_handler, step_bar};
-use crate::lab::budget::Budget;
+use crate::lab::budget::{Budget, time_budget};
 use crate::lab::compare::{CompareConfig, run_compare};
 use crate::lab::experiment::ReferenceSource;
 use crate::lab::insets::Inset;
@@ -53,8 +52,9 @@ pub fn budget(spp: Option<u32>, time: Option<f64>) -> Result<Budget, CliError> {
     match (spp, time) {
         (Some(0), _) => Err(CliError::input("--spp must be at least 1")),
         (Some(n), None) => Ok(Budget::Spp(n)),
-        (None, Some(t)) if t.is_finite() && t > 0.0 => Ok(Budget::Time(Duration::from_secs_f64(t))),
-        (None, Some(t)) => Err(CliError::input(format!("--time must be positive, not {t}"))),
+        (None, Some(t)) => time_budget(t)
+            .map(Budget::Time)
+            .map_err(|e| CliError::input(format!("--time {e}"))),
         _ => Err(CliError::input("give --spp N or --time SECS")),
     }
 }

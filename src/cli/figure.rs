@@ -7,6 +7,7 @@ use clap::Args;
 use super::CliError;
 use super::lab_args::LabRenderArgs;
 use super::render::{STOP, install_stop_handler, step_bar};
+use crate::lab::budget::time_budget;
 use crate::lab::compare::CompareConfig;
 use crate::lab::figure::{FIGURES, FigureOptions, find, plan, run_figure};
 
@@ -19,8 +20,12 @@ pub struct FigureArgs {
     #[arg(long)]
     pub list: bool,
     /// Override the figure's equal spp.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "time")]
     pub spp: Option<u32>,
+    /// Equal wall-clock time per strategy, in seconds, instead of the figure's equal spp
+    /// (the references keep their spp).
+    #[arg(long, allow_negative_numbers = true)]
+    pub time: Option<f64>,
     /// Override the reference spp.
     #[arg(long)]
     pub reference_spp: Option<u32>,
@@ -39,6 +44,11 @@ pub fn run(args: &FigureArgs) -> Result<(), CliError> {
     let options = FigureOptions {
         base: args.render.base(),
         spp: args.spp,
+        time: args
+            .time
+            .map(time_budget)
+            .transpose()
+            .map_err(|e| CliError::input(format!("--time {e}")))?,
         reference_spp: args.reference_spp,
         converge: args.converge,
     };

@@ -14,12 +14,15 @@
 //! total converges to the budget from below; rounds stop when less than half a sample per
 //! pixel of time is left, or when a watcher thread signals the deadline (`render` then
 //! finishes its current internal round: an eighth of the call, or on a small image up to
-//! the whole call, about 10⁶ samples).
+//! the whole call, about 10⁶ samples). Under optimal MIS the rounds hand on each pixel's
+//! α and technique moments (`render::Carry`): learning α afresh in every round (each
+//! starting from the balance heuristic) left 1.4× the relMSE of one render of as many
+//! samples on `veach-mis` (BENCHMARKS.md).
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
-use crate::render::{Control, RenderOutput, RenderSettings, render};
+use crate::render::{Carry, Control, RenderOutput, RenderSettings, render, render_carrying};
 use crate::scene::Scene;
 use crate::settings::SamplerKind;
 
@@ -39,6 +42,22 @@ impl Budget {
             Budget::Spp(n) => format!("equal spp ({n} spp)"),
             Budget::Time(t) => format!("equal time ({:.2} s)", t.as_secs_f64()),
         }
+    }
+}
+
+/// A wall-clock budget of `seconds`, or what is wrong with it: it must be positive,
+/// finite and fit a [`Duration`] (`--time 1e300` is refused here rather than panicking
+/// in the conversion).
+pub fn time_budget(seconds: f64) -> Result<Duration, String> {
+    match Duration::try_from_secs_f64(seconds) {
+        Ok(t) if seconds > 0.0 => Ok(t),
+        // Large values in exponent form: `{}` writes 1e300 with all its 301 digits.
+        _ if seconds.abs() >= 1e15 => Err(format!(
+            "must be positive and at most 1.8e19 seconds, not {seconds:e}"
+        )),
+        _ => Err(format!(
+            "must be positive and at most 1.8e19 seconds, not {seconds}"
+        )),
     }
 }
 
@@ -125,6 +144,8 @@ fn rounds(
 ) -> RenderOutput {
     let mut spp_next = 1u32;
     let mut total: Option<RenderOutput> = None;
+    // Optimal MIS goes on learning its weights from round to round.
+    let mut carry = Carry::default();
     // Stratified strata need the sample count up front: its rounds are independent
     // renders under new seeds. The other samplers continue one sequence.
     let continues = settings.sampler != SamplerKind::Stratified;
@@ -144,7 +165,7 @@ fn rounds(
             },
             ..settings.clone()
         };
-        let out = render(scene, &s, control);
+        let out = render_carrying(scene, &s, control, &mut carry);
         let merged = RenderOutput::merge(total.take(), out);
         let elapsed = start.elapsed().as_secs_f64();
         let per_spp = elapsed / merged.spp.max(1) as f64;
@@ -166,6 +187,26 @@ fn rounds(
 mod tests {
     use super::*;
     use crate::scene;
+
+    #[test]
+    fn time_budgets_are_positive_and_fit_a_duration() {
+        assert_eq!(time_budget(1.5), Ok(Duration::from_millis(1500)));
+        assert_eq!(
+            time_budget(1e18),
+            Ok(Duration::from_secs(1_000_000_000_000_000_000))
+        );
+        for (t, shown) in [
+            (0.0, "not 0"),
+            (-5.0, "not -5"),
+            (f64::NAN, "not NaN"),
+            (f64::INFINITY, "not inf"),
+            (1e300, "not 1e300"),
+            (-1e20, "not -1e20"),
+        ] {
+            let e = time_budget(t).unwrap_err();
+            assert!(e.ends_with(shown), "{t}: {e}");
+        }
+    }
 
     #[test]
     fn timed_render_is_whole_rounds_of_whole_images() {

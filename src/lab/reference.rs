@@ -17,7 +17,7 @@ use std::time::{Duration, Instant};
 
 use crate::image::Film;
 use crate::lab::budget::round_seed;
-use crate::render::{Control, RenderOutput, RenderSettings, render};
+use crate::render::{Carry, Control, RenderOutput, RenderSettings, render_carrying};
 use crate::scene::Scene;
 
 /// The quantile of per-pixel relative error a reference is held to.
@@ -117,6 +117,9 @@ pub fn render_reference(
     let mut total: Option<RenderOutput> = None;
     let mut pass_spp = 4u32;
     let mut passes = 0;
+    // Optimal MIS goes on learning its weights from pass to pass (its α comes from
+    // earlier passes' samples only, so each pass stays unbiased under its own seed).
+    let mut carry = Carry::default();
     loop {
         let done = total.as_ref().map_or(0, |t| t.spp);
         let mut spp = pass_spp;
@@ -134,7 +137,7 @@ pub fn render_reference(
             seed: round_seed(settings.seed, passes),
             ..settings.clone()
         };
-        let out = render(scene, &s, &control);
+        let out = render_carrying(scene, &s, &control, &mut carry);
         passes += 1;
         let merged = RenderOutput::merge(total.take(), out);
         let error = estimate_error(&merged.film);

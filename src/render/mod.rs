@@ -93,8 +93,30 @@ pub struct Control<'a> {
     pub frame: Option<&'a (dyn Fn(&Film) + Sync)>,
 }
 
+/// What one render of an image hands on to the next render of the same image (the
+/// rounds of a timed render, a reference's passes): under optimal MIS, every pixel's α
+/// and technique moments, so that the next call starts from all the samples so far
+/// rather than again from the balance heuristic. α only ever comes from samples of
+/// earlier rounds, so carrying it keeps each round unbiased whatever its seed.
+#[derive(Debug, Default)]
+pub struct Carry {
+    /// Per pixel, row by row (empty until an optimal-MIS render fills it).
+    optimal: Vec<Mutex<OptimalPixel>>,
+}
+
 /// Renders `scene` with `settings`.
 pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -> RenderOutput {
+    render_carrying(scene, settings, control, &mut Carry::default())
+}
+
+/// [`render`], starting from and leaving in `carry` what the next render of the same
+/// image may continue from. A `carry` filled for another image size starts afresh.
+pub fn render_carrying(
+    scene: &Scene,
+    settings: &RenderSettings,
+    control: &Control<'_>,
+    carry: &mut Carry,
+) -> RenderOutput {
     let camera = settings.camera(scene);
     let (w, h) = (camera.width, camera.height);
     // The light strategy travels with the estimator to every light it asks.
@@ -121,13 +143,13 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
     let mut stopped = false;
     // Optimal MIS keeps per pixel the α of earlier rounds and the moments of all samples
     // (each pixel's samples run on one thread at a time: the locks are uncontended).
-    let optimal: Vec<Mutex<OptimalPixel>> = if optimal_mis {
-        (0..w as usize * h as usize)
+    let pixels = w as usize * h as usize;
+    if optimal_mis && carry.optimal.len() != pixels {
+        carry.optimal = (0..pixels)
             .map(|_| Mutex::new(OptimalPixel::default()))
-            .collect()
-    } else {
-        Vec::new()
-    };
+            .collect();
+    }
+    let optimal: &[Mutex<OptimalPixel>] = if optimal_mis { &carry.optimal } else { &[] };
     // Light samples drawn `LANES` shading points at a time where the lights allow it.
     let lanes = staged::light_lanes(scene, &estimator);
     // Blocks of pixels whose camera rays all miss the scene skip the traversal, and
@@ -141,7 +163,7 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
             settings,
             camera: &camera,
             estimator: &estimator,
-            optimal: &optimal,
+            optimal,
             invalid: &invalid,
             lanes: lanes.as_ref(),
             cull: cull.as_ref(),
@@ -168,7 +190,7 @@ pub fn render(scene: &Scene, settings: &RenderSettings, control: &Control<'_>) -
                 &job,
             );
         }
-        for cell in &optimal {
+        for cell in optimal {
             cell.lock().unwrap_or_else(|e| e.into_inner()).next_round();
         }
         done = s1;
@@ -410,6 +432,50 @@ mod tests {
                 .collect()
         };
         assert_eq!(bits(&rendered), bits(&film));
+    }
+
+    /// Under optimal MIS a render continued from a [`Carry`] uses the α of the samples
+    /// before it from its first round on; from an empty carry it is the plain render
+    /// (whose first round is the balance heuristic).
+    #[test]
+    fn a_carried_optimal_mis_render_starts_from_the_earlier_alpha() {
+        let scene = crate::scene::load("builtin:veach-mis").expect("scene");
+        let mut settings = RenderSettings::for_scene(&scene);
+        settings.resolution = Some((48, 32));
+        settings.estimator = EstimatorKind::Mis;
+        settings.mis.heuristic = MisHeuristic::Optimal;
+        settings.spp = 8;
+        let stop = AtomicBool::new(false);
+        let control = Control {
+            progress: &|_, _| {},
+            stop: &stop,
+            frame: None,
+        };
+        let mut carry = Carry::default();
+        render_carrying(&scene, &settings, &control, &mut carry);
+        let learnt = carry
+            .optimal
+            .iter()
+            .filter(|c| c.lock().unwrap().alpha != [crate::math::Spectrum::ZERO; 2])
+            .count();
+        assert!(learnt > 48 * 32 / 4, "{learnt} pixels with α ≠ 0");
+        let next = RenderSettings {
+            first_sample: 8,
+            ..settings.clone()
+        };
+        let mean = |f: &Film| -> Vec<[u32; 3]> {
+            f.pixels
+                .iter()
+                .map(|p| p.mean.to_array().map(f32::to_bits))
+                .collect()
+        };
+        let continued = render_carrying(&scene, &next, &control, &mut carry).film;
+        let afresh = render_carrying(&scene, &next, &control, &mut Carry::default()).film;
+        assert_eq!(mean(&afresh), mean(&render_quiet(&scene, &next).film));
+        let differ = (0..afresh.pixels.len())
+            .filter(|&i| mean(&continued)[i] != mean(&afresh)[i])
+            .count();
+        assert!(differ > 48 * 32 / 4, "{differ} pixels differ");
     }
 
     #[test]

@@ -75,9 +75,9 @@ named_enum! {
 }
 
 named_enum! {
-    /// How an area light draws its samples. Named as on the command line. A shape that
-    /// lacks the chosen strategy uses `area`; `best` resolves per shape
-    /// (`LightSampling::resolve` in the `light` module).
+    /// How an area light draws its samples. Named as on the command line. A render
+    /// refuses a strategy that one of the scene's shapes lacks (`light::check_sampling`);
+    /// `best` resolves per shape (`LightSampling::resolve` in the `light` module).
     pub enum LightSampling: "light sampling" {
         /// Uniform over the shape's area (lecture p₁ = 1/A), with horizon rejection before
         /// the shadow ray.
@@ -97,7 +97,8 @@ named_enum! {
         /// horizon (projected solid angle; after Peters 2021), so an unoccluded constant
         /// emitter over a Lambertian receiver gives every sample the same value.
         ProjectedSolidAngle => "projected-solid-angle",
-        /// The lowest-variance strategy of each shape.
+        /// Per shape, the strategy of lowest measured relMSE × time (solid angle on most
+        /// shapes, area on disks and small triangles; `LightSampling::resolve`).
         Best => "best",
     }
 }
@@ -122,7 +123,8 @@ named_enum! {
 }
 
 /// Candidates per light sample of `--light-select ris` when none is given: the best of
-/// 2, 4 and 8 at equal time on `shirley-100` and `many-lights?n=1000` (BENCHMARKS.md).
+/// 2, 4 and 8 at equal time on `shirley-100` and `many-lights?n=1000` (BENCHMARKS.md;
+/// one candidate is the `bvh` estimator with a target evaluation more per sample).
 pub const DEFAULT_RIS_CANDIDATES: u32 = 2;
 /// The most candidates `--light-select ris` draws per light sample.
 pub const MAX_RIS_CANDIDATES: u32 = 64;

@@ -122,7 +122,7 @@ macro_rules! render_patch {
 render_patch! {
     /// Direct-lighting estimator: hemisphere, hemisphere-rejection, cosine, bsdf, light, mis.
     estimator: EstimatorKind = flag::ESTIMATOR,
-    /// MIS weighting: balance, power (β = 2), one-sample (balance, one strategy per sample), optimal (Kondapaneni et al. 2019: balance plus a per-pixel control variate).
+    /// MIS weighting: balance, power (β = 2), one-sample (balance, one strategy per sample), optimal (Kondapaneni et al. 2019: balance plus a per-pixel control variate; not with `--light-select ris`).
     mis: MisHeuristic = flag::MIS,
     /// Light samples per estimate of the `mis` estimator (1 to 1024).
     light_samples: u32 = flag::LIGHT_SAMPLES,
@@ -132,9 +132,9 @@ render_patch! {
     light_sampling: LightSampling = flag::LIGHT_SAMPLING,
     /// Light selection among many lights: uniform, power, adaptive, bvh, ris.
     light_select: LightSelect = flag::LIGHT_SELECT,
-    /// Candidates per light sample of `--light-select ris` (1 to 64).
+    /// Candidates per light sample of `--light-select ris` (1 to 64, default 2).
     ris_candidates: u32 = flag::RIS_CANDIDATES,
-    /// Spatial reuse of `--light-select ris` reservoirs: K neighbouring pixels per sample (0 = off, up to 32; Bitterli et al. 2020, neighbours combined with pairwise MIS weights).
+    /// Spatial reuse of `--light-select ris` reservoirs: K neighbouring pixels per sample (0 = off, up to 32; Bitterli et al. 2020, neighbours combined with pairwise MIS weights; estimators light and mis).
     ris_spatial: u32 = flag::RIS_SPATIAL,
     /// Radius in pixels of the disk `--ris-spatial` draws its neighbours from (1 to 256, default 10).
     ris_radius: u32 = flag::RIS_RADIUS,

@@ -3,6 +3,7 @@
 
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
+use std::time::Duration;
 
 use serde_json::json;
 
@@ -72,13 +73,16 @@ pub fn find(name: &str) -> Result<&'static Figure, LabError> {
     })
 }
 
-/// Run-time choices: flags for every render, and optional spp overrides.
+/// Run-time choices: flags for every render, optional spp overrides, or an equal-time
+/// budget.
 #[derive(Clone, Debug, Default)]
 pub struct FigureOptions {
     /// Flags applied to every strategy (`--width`, `--seed`, ...).
     pub base: RenderPatch,
     /// Override of the panels' equal spp.
     pub spp: Option<u32>,
+    /// Equal wall-clock time per strategy instead of the panels' equal spp.
+    pub time: Option<Duration>,
     /// Override of the reference spp.
     pub reference_spp: Option<u32>,
     /// Also plot convergence up to this spp (sub-report `converge/` of each panel).
@@ -147,7 +151,10 @@ pub fn plan(figure: &Figure, options: &FigureOptions) -> Result<Vec<CompareConfi
         configs.push(CompareConfig {
             scene: panel.scene.to_string(),
             strategies,
-            budget: Budget::Spp(options.spp.unwrap_or(panel.spp)),
+            budget: match options.time {
+                Some(t) => Budget::Time(t),
+                None => Budget::Spp(options.spp.unwrap_or(panel.spp)),
+            },
             base: options.base.clone(),
             reference: ReferenceSource::Render {
                 strategy: reference,
@@ -186,7 +193,13 @@ pub fn run_figure(
     let mut all = Vec::new();
     let mut links = Vec::new();
     let mut table = Table {
-        caption: "Every panel at equal spp; relative efficiency within each panel".into(),
+        caption: format!(
+            "Every panel at {}; relative efficiency within each panel",
+            match options.time {
+                Some(t) => Budget::Time(t).describe(),
+                None => "equal spp".into(),
+            }
+        ),
         header: [
             "panel",
             "strategy",
@@ -276,5 +289,21 @@ mod tests {
             );
         }
         assert!(find("nope").is_err());
+    }
+
+    #[test]
+    fn a_time_budget_replaces_every_panels_spp() {
+        let opts = FigureOptions {
+            time: Some(Duration::from_millis(1500)),
+            spp: Some(7),
+            ..FigureOptions::default()
+        };
+        for f in FIGURES {
+            for config in plan(f, &opts).unwrap() {
+                assert_eq!(config.budget, Budget::Time(Duration::from_millis(1500)));
+            }
+        }
+        let configs = plan(find("ris").unwrap(), &FigureOptions::default()).unwrap();
+        assert!(matches!(configs[0].budget, Budget::Spp(_)));
     }
 }
