@@ -10,14 +10,15 @@ use glam::{Mat3, Vec3};
 use lightlab::bsdf::{Diffuse, Material};
 use lightlab::geometry::Ray;
 use lightlab::image::Film;
-use lightlab::integrator::{Estimator, EstimatorKind};
-use lightlab::light::Environment;
+use lightlab::integrator::{Estimator, EstimatorKind, MisHeuristic, MisSettings};
 use lightlab::light::environment::LatLongImage;
 use lightlab::light::select::LightSelect;
+use lightlab::light::{Environment, LightStrategy};
 use lightlab::math::Spectrum;
 use lightlab::render::{RenderSettings, render_quiet};
 use lightlab::sampling::{Rng32, SamplerKind};
 use lightlab::scene::Camera;
+use lightlab::scene::builder::Emission;
 use lightlab::scene::{Scene, SceneBuilder, builtin};
 
 fn camera() -> Camera {
@@ -26,7 +27,17 @@ fn camera() -> Camera {
 
 /// Mean and standard error of `n` estimates at the first hit of `ray`, seen along it.
 fn estimate(scene: &Scene, kind: EstimatorKind, ray: &Ray, n: usize) -> (f64, f64) {
-    let est = Estimator::new(scene, kind, LightSelect::Uniform);
+    estimate_with(
+        &Estimator::new(scene, kind, LightSelect::Uniform),
+        scene,
+        ray,
+        n,
+    )
+}
+
+/// [`estimate`] with the estimator `est`.
+fn estimate_with(est: &Estimator, scene: &Scene, ray: &Ray, n: usize) -> (f64, f64) {
+    let kind = est.kind;
     let hit = scene.geometry.intersect(ray, f32::INFINITY).expect("hit");
     let mut rng = Rng32::new(1234 + kind as u64);
     let (mut sum, mut sum2) = (0f64, 0f64);
@@ -78,6 +89,16 @@ fn white_furnace_is_one_for_every_estimator() {
                 );
             }
         }
+        // MIS compensation of a uniform environment leaves the BSDF samples alone, each
+        // exactly one here: a zero-variance estimate.
+        let ray = Ray::new(Vec3::new(0.0, 0.0, 4.0), Vec3::new(0.6, 0.5, -4.0));
+        let compensated = Estimator::new(&scene, EstimatorKind::Mis, LightSelect::Uniform)
+            .with_light_strategy(&scene, COMPENSATED);
+        let (mean, se) = estimate_with(&compensated, &scene, &ray, 10_000);
+        assert!(
+            (mean - 1.0).abs() < 1e-5 && se < 1e-6,
+            "compensated furnace map={map}: {mean} ± {se}"
+        );
         // The background is the environment itself.
         let mut s = RenderSettings::for_scene(&scene);
         s.spp = 2;
@@ -119,6 +140,101 @@ fn constant_environment_gives_irradiance_pi_l_on_a_plane() {
                 &format!("plane map={map} {kind}"),
                 estimate(&scene, kind, &ray, 100_000),
                 (rho * l) as f64,
+            );
+        }
+        let compensated = Estimator::new(&scene, EstimatorKind::Mis, LightSelect::Bvh)
+            .with_light_strategy(&scene, COMPENSATED);
+        assert_close(
+            &format!("plane map={map} mis, compensated"),
+            estimate_with(&compensated, &scene, &ray, 100_000),
+            (rho * l) as f64,
+        );
+    }
+}
+
+/// Light sampling as `render` sets it up under `--estimator mis`: solid angle where it
+/// is best, environments with MIS compensation.
+const COMPENSATED: LightStrategy = LightStrategy {
+    sampling: lightlab::light::LightSampling::Best,
+    env_compensation: true,
+    horizon_rejection: true,
+    fast_paths: true,
+};
+
+/// A plane under a constant environment and a sphere light straight above the shading
+/// point. The sphere (radius r at distance d) hides a cap of the sky of projected solid
+/// angle π(r/d)² and shows its own radiance there instead, so
+/// L_out = ρ·(L_env·(1 − (r/d)²) + L_s·(r/d)²). Under MIS compensation the constant
+/// draws no light samples and every selector gives the sphere all of them (the
+/// environment's probability is zero): unbiased under every heuristic and selector, and
+/// the sphere's estimates carry more of the budget than with the environment selected.
+#[test]
+fn compensated_constant_environment_gives_its_turns_to_the_other_lights() {
+    let (rho, l_env, l_s, r, d) = (0.7f32, 0.5f32, 20.0f32, 0.3f32, 1.5f32);
+    let mut b = SceneBuilder::new("plane, sphere and sky");
+    let m = b.material(Material::Diffuse(Diffuse {
+        reflectance: Spectrum::splat(rho),
+    }));
+    b.rectangle(
+        Vec3::new(-3.0, 0.0, 3.0),
+        Vec3::new(6.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, -6.0),
+        m,
+        None,
+    );
+    let black = b.material(Material::Diffuse(Diffuse {
+        reflectance: Spectrum::ZERO,
+    }));
+    b.sphere(
+        Vec3::new(0.0, d, 0.0),
+        r,
+        black,
+        Some(Emission {
+            radiance: Spectrum::splat(l_s),
+            texture: None,
+            two_sided: false,
+        }),
+    );
+    b.environment(Environment::constant(Spectrum::splat(l_env)));
+    let scene = b.build(camera(), 1).expect("scene");
+    let sin2 = ((r / d) * (r / d)) as f64;
+    let exact = rho as f64 * (l_env as f64 * (1.0 - sin2) + l_s as f64 * sin2);
+    // Seen from (0.5, 2, 2) towards the origin, past the sphere.
+    let ray = Ray::new(Vec3::new(0.5, 2.0, 2.0), Vec3::new(-0.5, -2.0, -2.0));
+    for select in [
+        LightSelect::Uniform,
+        LightSelect::Power,
+        LightSelect::Adaptive,
+        LightSelect::Bvh,
+        LightSelect::Ris,
+    ] {
+        for heuristic in [
+            MisHeuristic::Balance,
+            MisHeuristic::Power,
+            MisHeuristic::OneSample,
+        ] {
+            let est = Estimator::new(&scene, EstimatorKind::Mis, select)
+                .with_mis(MisSettings {
+                    heuristic,
+                    ..MisSettings::default()
+                })
+                .with_light_strategy(&scene, COMPENSATED);
+            let env = scene
+                .lights
+                .iter()
+                .position(|l| l.is_infinite())
+                .expect("sky");
+            let at = lightlab::light::ShadingPoint {
+                p: Vec3::ZERO,
+                ng: Vec3::Y,
+                n: Vec3::Y,
+            };
+            use lightlab::light::select::LightSelector;
+            assert_eq!(est.selector.pmf(&at, env), 0.0, "{select}");
+            assert_close(
+                &format!("sphere and sky, {select}, {heuristic}"),
+                estimate_with(&est, &scene, &ray, 200_000),
+                exact,
             );
         }
     }

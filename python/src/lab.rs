@@ -171,7 +171,7 @@ pub fn compare<'py>(
         (Some(0), _) => return Err(value_error("spp=0: need at least 1")),
         (Some(n), None) => Budget::Spp(n),
         (None, Some(t)) => {
-            Budget::Time(time_budget(t).map_err(|e| value_error(format!("time={t}: {e}")))?)
+            Budget::Time(time_budget(t).map_err(|e| value_error(format!("time {e}")))?)
         }
         _ => return Err(value_error("give spp=N or time=SECONDS (one of them)")),
     };

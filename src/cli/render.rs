@@ -134,7 +134,7 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
     let (first, last) = settings.pass.sample_range(settings.spp);
     let bar = progress_bar(match budget {
         Budget::Spp(_) => (last - first) as u64 * (camera.width * camera.height) as u64,
-        Budget::Time(t) => t.as_millis() as u64,
+        Budget::Time(t) => u64::try_from(t.as_millis()).unwrap_or(u64::MAX),
     });
     let progress = |done: u64, _total: u64| bar.set_position(done);
     let display = args

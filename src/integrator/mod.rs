@@ -42,6 +42,10 @@ pub struct Estimator {
     pub kind: EstimatorKind,
     /// Chooses a light for the light and MIS estimators.
     pub selector: Selector,
+    /// Which selector that is (rebuilt when the light strategy changes what lights draw).
+    select: LightSelect,
+    /// Whether `selector` leaves out lights that draw nothing under `lights`.
+    selector_excludes: bool,
     /// Sample counts and weighting of the MIS estimator.
     pub mis: MisSettings,
     /// How every light is sampled (per-shape strategy, environment compensation).
@@ -106,6 +110,8 @@ impl Estimator {
         Estimator {
             kind,
             selector: Selector::new(select, &scene.lights),
+            select,
+            selector_excludes: false,
             mis: MisSettings::default(),
             lights: LightStrategy::default(),
             ris: (select == LightSelect::Ris).then_some(DEFAULT_RIS_CANDIDATES),
@@ -121,8 +127,16 @@ impl Estimator {
         self
     }
 
-    /// The same estimator sampling lights with `lights`.
-    pub fn with_light_strategy(mut self, lights: LightStrategy) -> Estimator {
+    /// The same estimator sampling the lights of `scene` (the scene it was made for) with
+    /// `lights`; its light selection leaves out lights that draw nothing under them
+    /// ([`Selector::for_strategy`]).
+    pub fn with_light_strategy(mut self, scene: &Scene, lights: LightStrategy) -> Estimator {
+        // Rebuilt only where it changes: a light BVH over 10⁶ lights takes a while.
+        let excludes = scene.lights.iter().any(|l| l.draws_no_samples(lights));
+        if excludes || self.selector_excludes {
+            self.selector = Selector::for_strategy(self.select, &scene.lights, lights);
+            self.selector_excludes = excludes;
+        }
         self.lights = lights;
         self
     }

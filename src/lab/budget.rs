@@ -4,7 +4,9 @@
 //! A timed render runs rounds and merges their films (Chan et al. 1979, `Film::merge`).
 //! With the Sobol and independent samplers round k continues the sequence where the
 //! earlier rounds stopped (same seed, sample indices from the samples done), so a timed
-//! render of N samples per pixel uses the very points of one N-sample render: restarting
+//! render of N samples per pixel uses the very points of one N-sample render (its image
+//! is that render's up to the order of the sums; under optimal MIS α is updated at other
+//! round boundaries, so there the weights differ too): restarting
 //! Sobol with a new seed per round made a timed render several short, independent Sobol
 //! sets, 3–5× the error of one sequence at equal spp (BENCHMARKS.md). Stratified
 //! sampling fixes its strata by the sample count, so its rounds are independent renders
@@ -45,12 +47,15 @@ impl Budget {
     }
 }
 
-/// A wall-clock budget of `seconds`, or what is wrong with it: it must be positive,
-/// finite and fit a [`Duration`] (`--time 1e300` is refused here rather than panicking
-/// in the conversion).
+/// The longest time budget, in seconds (a [`Duration`] holds up to about 1.8447e19).
+pub const MAX_SECONDS: f64 = 1.8e19;
+
+/// A wall-clock budget of `seconds`, or what is wrong with it: it must be positive (at
+/// least a nanosecond), finite and at most [`MAX_SECONDS`] (`--time 1e300` is refused
+/// here rather than panicking in the conversion to a [`Duration`]).
 pub fn time_budget(seconds: f64) -> Result<Duration, String> {
     match Duration::try_from_secs_f64(seconds) {
-        Ok(t) if seconds > 0.0 => Ok(t),
+        Ok(t) if seconds > 0.0 && seconds <= MAX_SECONDS && !t.is_zero() => Ok(t),
         // Large values in exponent form: `{}` writes 1e300 with all its 301 digits.
         _ if seconds.abs() >= 1e15 => Err(format!(
             "must be positive and at most 1.8e19 seconds, not {seconds:e}"
@@ -106,7 +111,7 @@ fn render_timed(
     // own rounds (an eighth of the call, or about 10⁶ samples where that is more).
     let deadline = AtomicBool::new(false);
     let finished = AtomicBool::new(false);
-    let millis = |d: Duration| d.as_millis() as u64;
+    let millis = |d: Duration| u64::try_from(d.as_millis()).unwrap_or(u64::MAX);
     let progress = |_: u64, _: u64| (control.progress)(millis(start.elapsed()), millis(limit));
     let timed = Control {
         progress: &progress,
@@ -123,7 +128,8 @@ fn render_timed(
                 std::thread::sleep(Duration::from_micros(500));
             }
         });
-        let out = rounds(scene, settings, limit, start, &timed);
+        // Optimal MIS goes on learning its weights from round to round.
+        let out = rounds(scene, settings, limit, start, &timed, &mut Carry::default());
         finished.store(true, Ordering::Relaxed);
         out
     });
@@ -134,18 +140,18 @@ fn render_timed(
     }
 }
 
-/// The rounds of a timed render (see the module docs).
+/// The rounds of a timed render (see the module docs), handing `carry` from each to
+/// the next.
 fn rounds(
     scene: &Scene,
     settings: &RenderSettings,
     limit: Duration,
     start: Instant,
     control: &Control<'_>,
+    carry: &mut Carry,
 ) -> RenderOutput {
     let mut spp_next = 1u32;
     let mut total: Option<RenderOutput> = None;
-    // Optimal MIS goes on learning its weights from round to round.
-    let mut carry = Carry::default();
     // Stratified strata need the sample count up front: its rounds are independent
     // renders under new seeds. The other samplers continue one sequence.
     let continues = settings.sampler != SamplerKind::Stratified;
@@ -165,7 +171,7 @@ fn rounds(
             },
             ..settings.clone()
         };
-        let out = render_carrying(scene, &s, control, &mut carry);
+        let out = render_carrying(scene, &s, control, carry);
         let merged = RenderOutput::merge(total.take(), out);
         let elapsed = start.elapsed().as_secs_f64();
         let per_spp = elapsed / merged.spp.max(1) as f64;
@@ -201,7 +207,9 @@ mod tests {
             (f64::NAN, "not NaN"),
             (f64::INFINITY, "not inf"),
             (1e300, "not 1e300"),
+            (1.81e19, "not 1.81e19"),
             (-1e20, "not -1e20"),
+            (1e-12, "not 0.000000000001"),
         ] {
             let e = time_budget(t).unwrap_err();
             assert!(e.ends_with(shown), "{t}: {e}");
@@ -226,6 +234,31 @@ mod tests {
         assert!(out.spp > 1 && !out.stopped, "{} spp", out.spp);
         assert!(out.film.pixels.iter().all(|p| p.count == out.spp));
         assert_ne!(round_seed(3, 1), 3);
+    }
+
+    /// Under optimal MIS the rounds of a timed render hand their α on: the carry comes
+    /// back filled (dropping it in `rounds` leaves it empty).
+    #[test]
+    fn timed_optimal_mis_rounds_carry_their_alpha() {
+        let (scene, s) = crate::render::optimal_mis_veach(32, 24);
+        let stop = AtomicBool::new(false);
+        let control = Control {
+            progress: &|_, _| {},
+            stop: &stop,
+            frame: None,
+        };
+        let mut carry = Carry::default();
+        let start = Instant::now();
+        let out = rounds(
+            &scene,
+            &s,
+            Duration::from_millis(200),
+            start,
+            &control,
+            &mut carry,
+        );
+        assert!(out.spp > 1, "{} spp", out.spp);
+        assert!(!carry.is_empty());
     }
 
     /// With Sobol, a timed render in rounds is one sequence: its image is that of a single

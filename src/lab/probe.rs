@@ -81,7 +81,7 @@ pub fn probe(
     let emitted = crate::integrator::emitted_at(scene, &hit, w_out);
     let estimator = Estimator::new(scene, settings.estimator, settings.light_select)
         .with_mis(settings.mis)
-        .with_light_strategy(settings.light_strategy())
+        .with_light_strategy(scene, settings.light_strategy())
         .with_ris_candidates(settings.ris_candidates);
     let probe = Probe::new();
     let (mut sum, mut sum2) = (Spectrum::ZERO, Spectrum::ZERO);

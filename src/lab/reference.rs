@@ -187,6 +187,51 @@ mod tests {
         assert!((e.pixel_rel_error - 1.0 / 2.02).abs() < 1e-6);
     }
 
+    /// Under optimal MIS a reference's passes hand their α on: two passes (4 and 8 spp)
+    /// give the film of the same two renders carried by hand, and not that of the
+    /// second pass started afresh.
+    #[test]
+    fn optimal_mis_passes_carry_their_alpha() {
+        let (scene, mut s) = crate::render::optimal_mis_veach(32, 24);
+        s.seed = 7;
+        let stop = AtomicBool::new(false);
+        let target = ReferenceTarget {
+            rel_error: None,
+            max_spp: Some(12),
+            max_time: None,
+        };
+        let reference = render_reference(&scene, &s, &target, &stop, &|_, _| {});
+        assert_eq!((reference.passes, reference.output.spp), (2, 12));
+        let control = Control {
+            progress: &|_, _| {},
+            stop: &stop,
+            frame: None,
+        };
+        let pass = |k: u32, spp: u32, carry: &mut Carry| {
+            let p = RenderSettings {
+                spp,
+                seed: round_seed(s.seed, k),
+                ..s.clone()
+            };
+            render_carrying(&scene, &p, &control, carry)
+        };
+        let mut carry = Carry::default();
+        let first = pass(0, 4, &mut carry);
+        let carried = RenderOutput::merge(Some(first), pass(1, 8, &mut carry));
+        let mut carry = Carry::default();
+        let first = pass(0, 4, &mut carry);
+        let afresh = RenderOutput::merge(Some(first), pass(1, 8, &mut Carry::default()));
+        let bits = |o: &RenderOutput| -> Vec<[u32; 3]> {
+            o.film
+                .pixels
+                .iter()
+                .map(|p| p.mean.to_array().map(f32::to_bits))
+                .collect()
+        };
+        assert_eq!(bits(&reference.output), bits(&carried));
+        assert_ne!(bits(&carried), bits(&afresh));
+    }
+
     #[test]
     fn stops_at_the_error_target_or_the_spp_limit() {
         let scene = scene::load("builtin:assignment").unwrap();

@@ -97,11 +97,31 @@ pub struct Control<'a> {
 /// rounds of a timed render, a reference's passes): under optimal MIS, every pixel's α
 /// and technique moments, so that the next call starts from all the samples so far
 /// rather than again from the balance heuristic. α only ever comes from samples of
-/// earlier rounds, so carrying it keeps each round unbiased whatever its seed.
+/// earlier rounds, as within one render, so carrying it keeps each round unbiased.
 #[derive(Debug, Default)]
 pub struct Carry {
+    /// The image size the state is for.
+    size: (u32, u32),
     /// Per pixel, row by row (empty until an optimal-MIS render fills it).
     optimal: Vec<Mutex<OptimalPixel>>,
+}
+
+impl Carry {
+    /// True until a render that has something to hand on (optimal MIS) has run with it.
+    pub fn is_empty(&self) -> bool {
+        self.optimal.is_empty()
+    }
+}
+
+/// `veach-mis` at `w` × `h` under optimal MIS: the scene of the tests of [`Carry`].
+#[cfg(test)]
+pub(crate) fn optimal_mis_veach(w: u32, h: u32) -> (Scene, RenderSettings) {
+    let scene = crate::scene::load("builtin:veach-mis").expect("scene");
+    let mut settings = RenderSettings::for_scene(&scene);
+    settings.resolution = Some((w, h));
+    settings.estimator = EstimatorKind::Mis;
+    settings.mis.heuristic = MisHeuristic::Optimal;
+    (scene, settings)
 }
 
 /// Renders `scene` with `settings`.
@@ -122,7 +142,7 @@ pub fn render_carrying(
     // The light strategy travels with the estimator to every light it asks.
     let estimator = Estimator::new(scene, settings.estimator, settings.light_select)
         .with_mis(settings.mis)
-        .with_light_strategy(settings.light_strategy())
+        .with_light_strategy(scene, settings.light_strategy())
         .with_ris_candidates(settings.ris_candidates);
     let (first, last) = settings.pass.sample_range(settings.spp);
     let (first, last) = (first + settings.first_sample, last + settings.first_sample);
@@ -132,8 +152,9 @@ pub fn render_carrying(
     let tiles = tiles(w, h, tile_size(w, h));
     let invalid = AtomicU64::new(0);
     let start = Instant::now();
-    // Optimal MIS learns its weights round by round (the first is the balance heuristic),
-    // and a live view shows a render refine round by round: both keep eight rounds.
+    // Optimal MIS learns its weights round by round (the first is the balance heuristic,
+    // unless `carry` holds earlier rounds), and a live view shows a render refine round
+    // by round: both keep eight rounds.
     let optimal_mis =
         settings.estimator == EstimatorKind::Mis && settings.mis.heuristic == MisHeuristic::Optimal;
     let eighths = optimal_mis || control.frame.is_some();
@@ -143,9 +164,9 @@ pub fn render_carrying(
     let mut stopped = false;
     // Optimal MIS keeps per pixel the α of earlier rounds and the moments of all samples
     // (each pixel's samples run on one thread at a time: the locks are uncontended).
-    let pixels = w as usize * h as usize;
-    if optimal_mis && carry.optimal.len() != pixels {
-        carry.optimal = (0..pixels)
+    if optimal_mis && (carry.size != (w, h) || carry.optimal.is_empty()) {
+        carry.size = (w, h);
+        carry.optimal = (0..w as usize * h as usize)
             .map(|_| Mutex::new(OptimalPixel::default()))
             .collect();
     }
@@ -401,7 +422,7 @@ mod tests {
         assert_eq!(round_boundaries(0, 5, (w * h) as u64, false), [0, 5]);
         let estimator = Estimator::new(&scene, settings.estimator, settings.light_select)
             .with_mis(settings.mis)
-            .with_light_strategy(settings.light_strategy());
+            .with_light_strategy(&scene, settings.light_strategy());
         let one_by_one = packets::OneByOne(|x: u32, y: u32, key: u64, s: u32| {
             let mut sampler = Sampler::for_pixel(settings.sampler, key, s, settings.spp);
             let p = glam::Vec2::new(x as f32, y as f32) + sampler.next_2d();
@@ -439,11 +460,7 @@ mod tests {
     /// (whose first round is the balance heuristic).
     #[test]
     fn a_carried_optimal_mis_render_starts_from_the_earlier_alpha() {
-        let scene = crate::scene::load("builtin:veach-mis").expect("scene");
-        let mut settings = RenderSettings::for_scene(&scene);
-        settings.resolution = Some((48, 32));
-        settings.estimator = EstimatorKind::Mis;
-        settings.mis.heuristic = MisHeuristic::Optimal;
+        let (scene, mut settings) = optimal_mis_veach(48, 32);
         settings.spp = 8;
         let stop = AtomicBool::new(false);
         let control = Control {

@@ -10,8 +10,9 @@
 //! solves A α = b with A_tk = ∫ p_t p_k / Σ n p and b_t = ∫ f p_t / Σ n p (eq. 15). lightlab
 //! estimates A and b per pixel from its samples (Σ p_t p_k / (Σ n p)² and Σ f p_t / (Σ n p)²)
 //! and uses, in each round, the α of the rounds before it, so α never depends on the
-//! samples it weights: the first round is the balance heuristic (α = 0), and so is a pixel
-//! whose A is singular.
+//! samples it weights: the first round is the balance heuristic (α = 0) unless the render
+//! continues earlier ones (`render::Carry`: a timed render's rounds, a reference's
+//! passes), and so is a pixel whose A is singular.
 //!
 //! Densities are taken in path space, where each technique's failures live apart: a light
 //! sample that is occluded, faces away, lies below the horizon, carries no radiance, or

@@ -48,7 +48,7 @@ pub const FIGURES: &[Figure] = &[
     },
     Figure {
         name: "variance-sources",
-        description: "the lecture's sources of variance in direct lighting, region by region: (1) a glossy lobe, (2) floor lit by a close light, (3) a shadow boundary, (4) open floor; relMSE per region for every estimator at 16 spp",
+        description: "the lecture's sources of variance in direct lighting, region by region: (1) a glossy lobe, (2) floor lit by a close light, (3) a shadow boundary, (4) open floor; relMSE per region for every estimator",
         kind: FigureKind::Panels(&[Panel {
             title: "variance-sources",
             scene: "builtin:variance-sources",
@@ -166,7 +166,7 @@ pub const FIGURES: &[Figure] = &[
     },
     Figure {
         name: "projected-solid-angle",
-        description: "solid angle vs solid angle after the bilinear cos θ warp (Hart et al. 2020) vs exact projected solid angle (∝ cos θ above the horizon, after Peters 2021), light estimator at equal spp (or, with `--time`, equal time), for a rectangle, a mesh of triangles and a concave polygon; on the Lambertian plane projected solid angle leaves only the shadows' noise",
+        description: "solid angle vs solid angle after the bilinear cos θ warp (Hart et al. 2020) vs exact projected solid angle (∝ cos θ above the horizon, after Peters 2021), light estimator, for a rectangle, a mesh of triangles and a concave polygon; on the Lambertian plane projected solid angle leaves only the shadows' noise",
         kind: FigureKind::Panels(&[
             projected_panel("rectangle", "builtin:sphere-near-plane?emitters=rectangle"),
             projected_panel("triangle", "builtin:sphere-near-plane?emitters=mesh"),
@@ -175,7 +175,7 @@ pub const FIGURES: &[Figure] = &[
     },
     Figure {
         name: "many-lights",
-        description: "uniform vs power vs adaptive vs BVH light selection, shirley-100 at 49 spp",
+        description: "uniform vs power vs adaptive vs BVH light selection on shirley-100",
         kind: FigureKind::Panels(&[Panel {
             title: "many-lights",
             scene: "builtin:shirley-100",
@@ -210,7 +210,7 @@ pub const FIGURES: &[Figure] = &[
     },
     Figure {
         name: "optimal-mis",
-        description: "Veach's plates: MIS with the balance, power and optimal weights (Kondapaneni et al. 2019: the balance heuristic plus a per-pixel control variate fitted on the earlier rounds' samples), at equal spp (or, with `--time`, equal time)",
+        description: "Veach's plates: MIS with the balance, power and optimal weights (Kondapaneni et al. 2019: the balance heuristic plus a per-pixel control variate fitted on the earlier rounds' samples)",
         kind: FigureKind::Panels(&[Panel {
             title: "optimal-mis",
             scene: "builtin:veach-mis",
@@ -246,7 +246,7 @@ pub const FIGURES: &[Figure] = &[
     },
     Figure {
         name: "ris",
-        description: "light BVH vs resampled importance sampling (Talbot 2005) from 2, 4 and 8 BVH candidates, and from 2 with the reservoirs of 4 neighbouring pixels reused (Bitterli et al. 2020, pairwise MIS), light estimator at equal spp (or, with `--time`, equal time)",
+        description: "light BVH vs resampled importance sampling (Talbot 2005) from 2, 4 and 8 BVH candidates, and from 2 with the reservoirs of 4 neighbouring pixels reused (Bitterli et al. 2020, pairwise MIS), light estimator",
         kind: FigureKind::Panels(&[
             ris_panel("shirley-100", "builtin:shirley-100"),
             ris_panel("many-lights-1000", "builtin:many-lights?n=1000"),

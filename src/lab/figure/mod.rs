@@ -182,6 +182,12 @@ pub fn run_figure(
     log: &dyn Fn(&str),
 ) -> Result<Vec<(String, Vec<StrategyResult>)>, LabError> {
     if let FigureKind::Variance1d = figure.kind {
+        if options.time.is_some() {
+            return Err(LabError::Input(format!(
+                "figure {} is a table of variances, not renders: it takes no --time",
+                figure.name
+            )));
+        }
         write_variance_1d(figure, options.base.seed, dir)?;
         return Ok(vec![]);
     }

@@ -301,11 +301,13 @@ impl Environment {
     }
 
     /// Draws a world direction; returns it with its radiance and solid-angle density.
-    /// `compensate` samples the MIS-compensated distribution where the map has one (see
-    /// [`Environment::has_compensation`]).
+    /// `compensate` samples the MIS-compensated distribution (see
+    /// [`Environment::has_compensation`]), which is empty, so that nothing is drawn, for
+    /// an environment with nothing above its mean ([`Environment::compensation_is_empty`]).
     #[inline]
     pub fn sample(&self, u: Vec2, compensate: bool) -> Option<(Vec3, Spectrum, f32)> {
         match &self.radiance {
+            Radiance::Constant(_) if compensate => None,
             Radiance::Constant(l) => {
                 let (w, pdf) = square_to_uniform_sphere(u);
                 Some((w, *l * self.scale, pdf))
@@ -334,7 +336,7 @@ impl Environment {
     #[inline]
     pub fn eval_pdf(&self, w: Vec3, compensate: bool) -> (Spectrum, f32) {
         match &self.radiance {
-            Radiance::Constant(l) => (*l * self.scale, uniform_sphere_pdf(w)),
+            Radiance::Constant(l) => (*l * self.scale, self.constant_pdf(w, compensate)),
             Radiance::Map { image, .. } => {
                 // The radiance and the density read the same four texels.
                 let local = self.to_local * w;
@@ -372,8 +374,33 @@ impl Environment {
     #[inline]
     pub fn pdf(&self, w: Vec3, compensate: bool) -> f32 {
         match &self.radiance {
-            Radiance::Constant(_) => uniform_sphere_pdf(w),
+            Radiance::Constant(_) => self.constant_pdf(w, compensate),
             Radiance::Map { .. } => self.eval_pdf(w, compensate).1,
+        }
+    }
+
+    /// A constant's density: uniform over the sphere, or zero everywhere under
+    /// compensation (max(0, L − L̄) = 0).
+    #[inline]
+    fn constant_pdf(&self, w: Vec3, compensate: bool) -> f32 {
+        if compensate {
+            0.0
+        } else {
+            uniform_sphere_pdf(w)
+        }
+    }
+
+    /// Whether MIS compensation leaves this environment nothing to sample: a constant,
+    /// or a map with no texel above its mean (max(0, L − L̄) = 0 everywhere). Karlík et
+    /// al. 2019 note that for a constant environment the compensated technique vanishes
+    /// and BSDF sampling alone remains: under compensation such an environment draws no
+    /// samples and has density zero in every direction, so the BSDF samples that escape
+    /// take MIS weight one, and light selection gives it probability zero where another
+    /// light can use the sample ([`crate::light::Light::draws_no_samples`]).
+    pub fn compensation_is_empty(&self) -> bool {
+        match &self.radiance {
+            Radiance::Constant(_) => true,
+            Radiance::Map { compensated, .. } => compensated.is_none(),
         }
     }
 
@@ -383,7 +410,8 @@ impl Environment {
     /// bilinearly as the plain ones are, where L̄ is the mean radiance over the sphere.
     /// Directions whose four nearest texels are all at or below the mean get density zero
     /// under it, so it is only unbiased inside MIS, whose BSDF strategy covers them. A map
-    /// with no texel above its mean (a constant) has none and keeps its plain distribution.
+    /// with no texel above its mean (uniform), like a constant environment, has none:
+    /// compensated, it draws nothing ([`Environment::compensation_is_empty`]).
     pub fn has_compensation(&self) -> bool {
         matches!(
             &self.radiance,
@@ -394,7 +422,8 @@ impl Environment {
         )
     }
 
-    /// The distribution in use: the compensated one when asked for and present.
+    /// The distribution in use: the compensated one when asked for (none where it is
+    /// empty), else the plain one.
     #[inline]
     fn distribution(&self, compensate: bool) -> Option<&CellDistribution> {
         match &self.radiance {
@@ -403,10 +432,13 @@ impl Environment {
                 distribution,
                 compensated,
                 ..
-            } => Some(match compensated {
-                Some(c) if compensate => c,
-                _ => distribution,
-            }),
+            } => {
+                if compensate {
+                    compensated.as_ref()
+                } else {
+                    Some(distribution)
+                }
+            }
         }
     }
 

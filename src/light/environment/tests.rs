@@ -72,3 +72,27 @@ fn eval_pdf_is_eval_and_pdf_bit_for_bit() {
         (constant.eval(Vec3::X), constant.pdf(Vec3::X, false))
     );
 }
+
+/// Under MIS compensation a constant, and a map with no texel above its mean, draw
+/// nothing and have density zero everywhere; without it they are sampled uniformly
+/// (the constant) or ∝ L (the map), as before.
+#[test]
+fn compensation_of_a_uniform_environment_is_empty() {
+    let uniform = LatLongImage::new(8, 5, vec![Spectrum::splat(2.0); 40]).expect("image");
+    for env in [
+        Environment::constant(Spectrum::splat(2.0)),
+        Environment::from_image(uniform, 1.0, Mat3::IDENTITY).expect("env"),
+    ] {
+        assert!(env.compensation_is_empty() && !env.has_compensation());
+        let mut rng = crate::sampling::Rng32::new(5);
+        for _ in 0..1000 {
+            let u = Vec2::new(rng.next_f32(), rng.next_f32());
+            assert!(env.sample(u, true).is_none());
+            let (w, radiance, pdf) = env.sample(u, false).expect("a direction");
+            assert!(pdf > 0.0 && (pdf - env.pdf(w, false)).abs() < 1e-3 * pdf);
+            assert_eq!(env.pdf(w, true), 0.0);
+            let (r, p) = env.eval_pdf(w, true);
+            assert_eq!((r, p), (radiance, 0.0));
+        }
+    }
+}

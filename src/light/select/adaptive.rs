@@ -17,6 +17,8 @@ pub const ADAPTIVE_FLOOR: f64 = 0.1;
 #[derive(Clone, Debug)]
 pub struct AdaptiveSelector {
     lights: Vec<(Light, LightBounds)>,
+    /// Lights left out (probability zero), by index; empty when none is.
+    excluded: Vec<bool>,
 }
 
 /// Σe and Σm at a shading point.
@@ -51,12 +53,22 @@ impl AdaptiveSelector {
     pub fn new(lights: &[Light]) -> AdaptiveSelector {
         AdaptiveSelector {
             lights: lights.iter().map(|l| (l.clone(), l.bounds())).collect(),
+            excluded: Vec::new(),
         }
+    }
+
+    /// The same selector giving the lights marked in `excluded` probability zero.
+    pub fn excluding(mut self, excluded: &[bool]) -> AdaptiveSelector {
+        self.excluded = excluded.to_vec();
+        self
     }
 
     /// (e_i, m_i) of light `i` at `at`.
     #[inline]
     fn terms(&self, i: usize, at: &ShadingPoint) -> (f64, f64) {
+        if self.excluded.get(i) == Some(&true) {
+            return (0.0, 0.0);
+        }
         let (light, bounds) = &self.lights[i];
         let estimate = light.contribution_estimate(at) as f64;
         // A light at infinity has no spatial bound: its estimate is its own floor.

@@ -23,7 +23,7 @@ pub use power::PowerSelector;
 pub use prepared::PreparedBounds;
 pub use uniform::UniformSelector;
 
-use super::{Light, ShadingPoint};
+use super::{Light, LightStrategy, ShadingPoint};
 
 /// A chosen light, its probability, and `u` rescaled to [0, 1) so it can be used again.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -65,18 +65,49 @@ impl Selector {
     /// it cannot contribute, its sample is zero anyway), so no per-point selection work
     /// is done: uniform choice.
     pub fn new(kind: LightSelect, lights: &[Light]) -> Selector {
+        Selector::for_strategy(kind, lights, LightStrategy::default())
+    }
+
+    /// [`Selector::new`] for lights sampled with `strategy`: a light that draws no
+    /// samples under it ([`Light::draws_no_samples`]: a constant environment under MIS
+    /// compensation) gets probability zero, so that its turns go to lights that have
+    /// samples to give, unless no light has any.
+    pub fn for_strategy(kind: LightSelect, lights: &[Light], strategy: LightStrategy) -> Selector {
         if lights.len() == 1 {
             return Selector::Uniform(UniformSelector::new(1));
         }
+        let mut silent: Vec<bool> = lights
+            .iter()
+            .map(|l| l.draws_no_samples(strategy))
+            .collect();
+        if silent.iter().all(|&s| s) {
+            silent.fill(false);
+        }
+        let any_silent = silent.contains(&true);
         match kind {
-            LightSelect::Uniform => Selector::Uniform(UniformSelector::new(lights.len())),
+            LightSelect::Uniform if !any_silent => {
+                Selector::Uniform(UniformSelector::new(lights.len()))
+            }
+            // Uniform among the lights with samples: equal weights in the alias table.
+            LightSelect::Uniform => {
+                let weights: Vec<f32> = silent.iter().map(|&s| if s { 0.0 } else { 1.0 }).collect();
+                Selector::Power(PowerSelector::new(&weights))
+            }
             LightSelect::Power => {
-                let powers: Vec<f32> = lights.iter().map(|l| l.power()).collect();
+                let powers: Vec<f32> = lights
+                    .iter()
+                    .zip(&silent)
+                    .map(|(l, &s)| if s { 0.0 } else { l.power() })
+                    .collect();
                 Selector::Power(PowerSelector::new(&powers))
             }
-            LightSelect::Adaptive => Selector::Adaptive(AdaptiveSelector::new(lights)),
+            LightSelect::Adaptive => {
+                Selector::Adaptive(AdaptiveSelector::new(lights).excluding(&silent))
+            }
             // Resampling draws its candidates from the light BVH (see `integrator::ris`).
-            LightSelect::Bvh | LightSelect::Ris => Selector::Bvh(BvhSelector::new(lights)),
+            LightSelect::Bvh | LightSelect::Ris => {
+                Selector::Bvh(BvhSelector::new(lights).excluding(&silent))
+            }
         }
     }
 }
@@ -167,5 +198,35 @@ mod tests {
         let bvh = BvhSelector::new(&lights);
         // Six lights: a root of four lanes, two of them clusters of two (or one of three).
         assert!((2..=3).contains(&bvh.node_count()), "{}", bvh.node_count());
+    }
+
+    /// Under MIS compensation a constant environment draws no samples: every selector
+    /// gives it probability zero and the others' probabilities still sum to one; without
+    /// compensation, or when it is the only kind of light there is, it keeps its share.
+    #[test]
+    fn lights_that_draw_nothing_get_no_turns() {
+        use crate::light::Environment;
+        let sky = || Light::Environment(Environment::constant(Spectrum::ONE));
+        let lights = [sphere(-1.0, 2.0), sky(), sphere(1.0, 3.0), sphere(0.0, 1.0)];
+        let compensated = LightStrategy {
+            env_compensation: true,
+            ..LightStrategy::default()
+        };
+        for kind in LightSelect::ALL {
+            let plain = Selector::for_strategy(kind, &lights, LightStrategy::default());
+            assert!(plain.pmf(&AT, 1) > 0.0, "{kind}");
+            let s = Selector::for_strategy(kind, &lights, compensated);
+            assert_eq!(s.pmf(&AT, 1), 0.0, "{kind}");
+            let sum: f32 = (0..lights.len()).map(|i| s.pmf(&AT, i)).sum();
+            assert!((sum - 1.0).abs() < 1e-5, "{kind}: Σ pmf = {sum}");
+            for k in 0..1000 {
+                let sel = s.select(&AT, k as f32 / 1000.0).expect("a light");
+                assert_ne!(sel.index, 1, "{kind}");
+                assert_eq!(sel.pmf, s.pmf(&AT, sel.index), "{kind}");
+            }
+            // Nothing but skies: they keep their turns (their samples are empty anyway).
+            let skies = Selector::for_strategy(kind, &[sky(), sky()], compensated);
+            assert!(skies.pmf(&AT, 0) > 0.0 && skies.pmf(&AT, 1) > 0.0, "{kind}");
+        }
     }
 }

@@ -56,7 +56,7 @@ fn packets_give_the_samples_of_single_rays() {
         let camera = settings.camera(&scene);
         let estimator = Estimator::new(&scene, settings.estimator, settings.light_select)
             .with_mis(settings.mis)
-            .with_light_strategy(settings.light_strategy());
+            .with_light_strategy(&scene, settings.light_strategy());
         let pixels = (camera.width * camera.height) as usize;
         let states = |n: usize| -> Vec<Mutex<OptimalPixel>> {
             (0..n)
@@ -151,7 +151,7 @@ fn samples_do_not_depend_on_rounds_passes_or_tiles() {
     let camera = settings.camera(&scene);
     let estimator = Estimator::new(&scene, settings.estimator, settings.light_select)
         .with_mis(settings.mis)
-        .with_light_strategy(settings.light_strategy());
+        .with_light_strategy(&scene, settings.light_strategy());
     let invalid = AtomicU64::new(0);
     let lanes = light_lanes(&scene, &estimator);
     assert!(lanes.is_some());
@@ -220,7 +220,7 @@ fn culled_blocks_give_the_samples_of_single_rays() {
         let camera = settings.camera(&scene);
         let estimator = Estimator::new(&scene, settings.estimator, settings.light_select)
             .with_mis(settings.mis)
-            .with_light_strategy(settings.light_strategy());
+            .with_light_strategy(&scene, settings.light_strategy());
         let boxes = scene.geometry.bvh().cut(TOP_BOXES);
         let cull = FrustumCull::new(&camera, &boxes).expect("finite boxes");
         let (w, h) = (camera.width, camera.height);

@@ -116,6 +116,14 @@ impl BvhSelector {
         selector
     }
 
+    /// The same selector giving the lights at infinity marked in `excluded` probability
+    /// zero (the tree's lights stay: only environments draw no samples under a strategy,
+    /// see [`Light::draws_no_samples`]).
+    pub fn excluding(mut self, excluded: &[bool]) -> BvhSelector {
+        self.infinite.retain(|&i| excluded.get(i) != Some(&true));
+        self
+    }
+
     /// Number of (4-wide) nodes.
     pub fn node_count(&self) -> usize {
         self.nodes.len()
