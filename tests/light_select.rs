@@ -13,7 +13,7 @@ use lightlab::bsdf::{Diffuse, Material};
 use lightlab::image::Film;
 use lightlab::integrator::EstimatorKind;
 use lightlab::light::select::{LightSelect, LightSelector, Selection, Selector};
-use lightlab::light::{LightSampling, ShadingPoint};
+use lightlab::light::{LightSampling, LightStrategy, ShadingPoint};
 use lightlab::math::Spectrum;
 
 use lightlab::sampling::Rng32;
@@ -178,10 +178,21 @@ fn selection_chi2(
 
 /// Every selector of `scene` at every point: Σ pmf = 1, exact pmf, chi-square.
 fn check_scene(scene: &Scene, points: &[ShadingPoint], samples: usize, kinds: &[LightSelect]) {
+    check_scene_with(scene, points, samples, kinds, LightStrategy::default());
+}
+
+/// [`check_scene`] for the selectors built for lights sampled with `strategy`.
+fn check_scene_with(
+    scene: &Scene,
+    points: &[ShadingPoint],
+    samples: usize,
+    kinds: &[LightSelect],
+    strategy: LightStrategy,
+) {
     let alpha = sidak_alpha(points.len() * kinds.len());
     let mut failures = Vec::new();
     for &kind in kinds {
-        let selector = Selector::new(kind, &scene.lights);
+        let selector = Selector::for_strategy(kind, &scene.lights, strategy);
         for (k, at) in points.iter().enumerate() {
             let name = format!(
                 "{}-{kind}-point{k}",
@@ -364,7 +375,8 @@ fn all_selectors_render_the_same_shirley_100() {
 }
 
 /// An environment takes part in every selector as one more light (the BVH chooses it
-/// apart from its tree, as pbrt-v4 does), alone or beside area lights.
+/// apart from its tree, as pbrt-v4 does), alone or beside area lights; a constant one
+/// under MIS compensation, which draws nothing, takes no part beside other lights.
 #[test]
 fn selectors_include_the_environment() {
     use lightlab::light::Environment;
@@ -393,4 +405,9 @@ fn selectors_include_the_environment() {
     let scene = b.build(camera, 1).expect("scene");
     let points = points_through_camera(&scene, &[(0.5, 0.7), (0.3, 0.9)]);
     check_scene(&scene, &points, 50_000, &LightSelect::ALL);
+    let compensated = LightStrategy {
+        env_compensation: true,
+        ..LightStrategy::default()
+    };
+    check_scene_with(&scene, &points, 50_000, &LightSelect::ALL, compensated);
 }

@@ -17,8 +17,8 @@ use lightlab::geometry::Ray;
 use lightlab::integrator::{
     Estimator, EstimatorKind, MisHeuristic, MisSettings, Reuse, SpatialReservoir, SpatialSurface,
 };
-use lightlab::light::Environment;
 use lightlab::light::select::LightSelect;
+use lightlab::light::{Environment, LightStrategy};
 use lightlab::math::{PI, Spectrum};
 use lightlab::sampling::Rng32;
 use lightlab::scene::{Camera, Scene, SceneBuilder};
@@ -142,6 +142,16 @@ fn estimators(scene: &Scene) -> Vec<(String, Estimator)> {
             let est = Estimator::new(scene, EstimatorKind::Mis, LightSelect::Ris)
                 .with_mis(mis)
                 .with_ris_candidates(2);
+            if (light_samples, bsdf_samples) == (1, 1) {
+                // MIS compensation, as `render` sets it: the constant sky draws no light
+                // samples and no candidates, and the BSDF samples light it alone.
+                let compensated = LightStrategy {
+                    env_compensation: true,
+                    ..LightStrategy::default()
+                };
+                let est = est.clone().with_light_strategy(scene, compensated);
+                out.push((format!("{mis:?}, compensated"), est));
+            }
             out.push((format!("{mis:?}"), est));
         }
     }

@@ -57,7 +57,8 @@ fn augment(cmd: Command, names: &[&'static str], switch: bool) -> Command {
                 .long(flag::ENVMAP_COMPENSATION)
                 .help(
                     "MIS compensation of environment-map sampling (Karlík et al. 2019): sample \
-                     ∝ max(0, L − mean L). The default with --estimator mis; an error with the \
+                     ∝ max(0, L − mean L), and a constant environment not at all (the BSDF \
+                     samples light it). The default with --estimator mis; an error with the \
                      other estimators, for which it would be biased.",
                 )
                 .action(ArgAction::SetTrue)
@@ -67,8 +68,9 @@ fn augment(cmd: Command, names: &[&'static str], switch: bool) -> Command {
             Arg::new(flag::NO_ENVMAP_COMPENSATION)
                 .long(flag::NO_ENVMAP_COMPENSATION)
                 .help(
-                    "Environment maps sampled ∝ L under --estimator mis too (Mitsuba 3's and \
-                     pbrt-v4's choice), instead of the compensated distribution.",
+                    "Environment maps sampled ∝ L under --estimator mis too (Mitsuba 3's \
+                     choice; pbrt-v4's path integrator compensates), instead of the \
+                     compensated distribution.",
                 )
                 .action(ArgAction::SetTrue)
                 .overrides_with(flag::ENVMAP_COMPENSATION),

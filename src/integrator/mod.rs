@@ -27,7 +27,7 @@ use glam::Vec3;
 
 use crate::bsdf::{Bsdf, Material};
 use crate::geometry::{NO_LIGHT, Ray, SurfaceHit};
-use crate::light::select::{LightSelect, Selector};
+use crate::light::select::{LightSelect, Selector, silent_lights};
 use crate::light::{LightSample, LightStrategy, ShadingPoint};
 use crate::math::{Frame, Spectrum};
 use crate::sampling::Uniform;
@@ -46,6 +46,10 @@ pub struct Estimator {
     select: LightSelect,
     /// Whether `selector` leaves out lights that draw nothing under `lights`.
     selector_excludes: bool,
+    /// Whether some light draws samples under `lights` (false when every light draws
+    /// none, e.g. a compensated constant sky alone): one-sample MIS then always takes
+    /// the BSDF technique.
+    lights_sample: bool,
     /// Sample counts and weighting of the MIS estimator.
     pub mis: MisSettings,
     /// How every light is sampled (per-shape strategy, environment compensation).
@@ -112,6 +116,7 @@ impl Estimator {
             selector: Selector::new(select, &scene.lights),
             select,
             selector_excludes: false,
+            lights_sample: !scene.lights.is_empty(),
             mis: MisSettings::default(),
             lights: LightStrategy::default(),
             ris: (select == LightSelect::Ris).then_some(DEFAULT_RIS_CANDIDATES),
@@ -130,13 +135,20 @@ impl Estimator {
     /// The same estimator sampling the lights of `scene` (the scene it was made for) with
     /// `lights`; its light selection leaves out lights that draw nothing under them
     /// ([`Selector::for_strategy`]).
-    pub fn with_light_strategy(mut self, scene: &Scene, lights: LightStrategy) -> Estimator {
-        // Rebuilt only where it changes: a light BVH over 10⁶ lights takes a while.
-        let excludes = scene.lights.iter().any(|l| l.draws_no_samples(lights));
-        if excludes || self.selector_excludes {
-            self.selector = Selector::for_strategy(self.select, &scene.lights, lights);
-            self.selector_excludes = excludes;
+    /// Compensation only applies under `mis` (it would be biased with the others).
+    pub fn with_light_strategy(mut self, scene: &Scene, mut lights: LightStrategy) -> Estimator {
+        lights.env_compensation &= self.kind == EstimatorKind::Mis;
+        if self.selector_excludes {
+            self.selector = Selector::new(self.select, &scene.lights);
+            self.selector_excludes = false;
         }
+        // The selector is patched, not rebuilt: a light BVH over 10⁶ lights takes a while.
+        if let Some(silent) = silent_lights(&scene.lights, lights) {
+            let plain = std::mem::replace(&mut self.selector, Selector::new(self.select, &[]));
+            self.selector = plain.excluding(&scene.lights, &silent);
+            self.selector_excludes = true;
+        }
+        self.lights_sample = scene.lights.iter().any(|l| !l.draws_no_samples(lights));
         self.lights = lights;
         self
     }
@@ -249,6 +261,7 @@ impl Estimator {
             probe: None,
             optimal: None,
             emitters_reachable: self.emitters_reachable,
+            lights_sample: self.lights_sample,
         }
     }
 }
@@ -343,6 +356,8 @@ struct Context<'a> {
     optimal: Option<&'a RefCell<OptimalPixel>>,
     /// Whether any ray can reach an emitter (see [`Estimator`]).
     emitters_reachable: bool,
+    /// Whether some light draws samples (see [`Estimator`]).
+    lights_sample: bool,
 }
 
 impl Context<'_> {

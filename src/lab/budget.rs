@@ -54,14 +54,20 @@ pub const MAX_SECONDS: f64 = 1.8e19;
 /// least a nanosecond), finite and at most [`MAX_SECONDS`] (`--time 1e300` is refused
 /// here rather than panicking in the conversion to a [`Duration`]).
 pub fn time_budget(seconds: f64) -> Result<Duration, String> {
+    // Very large and very small values in exponent form: `{}` writes 1e300 with all its
+    // 301 digits.
+    let shown = if seconds != 0.0 && !(1e-6..1e15).contains(&seconds.abs()) {
+        format!("{seconds:e}")
+    } else {
+        format!("{seconds}")
+    };
     match Duration::try_from_secs_f64(seconds) {
         Ok(t) if seconds > 0.0 && seconds <= MAX_SECONDS && !t.is_zero() => Ok(t),
-        // Large values in exponent form: `{}` writes 1e300 with all its 301 digits.
-        _ if seconds.abs() >= 1e15 => Err(format!(
-            "must be positive and at most 1.8e19 seconds, not {seconds:e}"
+        _ if seconds > 0.0 && seconds < 1e-9 => Err(format!(
+            "must be at least a nanosecond (1e-9 seconds), not {shown}"
         )),
         _ => Err(format!(
-            "must be positive and at most 1.8e19 seconds, not {seconds}"
+            "must be positive and at most {MAX_SECONDS:e} seconds, not {shown}"
         )),
     }
 }
@@ -209,7 +215,8 @@ mod tests {
             (1e300, "not 1e300"),
             (1.81e19, "not 1.81e19"),
             (-1e20, "not -1e20"),
-            (1e-12, "not 0.000000000001"),
+            (1e-12, "at least a nanosecond (1e-9 seconds), not 1e-12"),
+            (1e-300, "not 1e-300"),
         ] {
             let e = time_budget(t).unwrap_err();
             assert!(e.ends_with(shown), "{t}: {e}");

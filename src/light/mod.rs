@@ -147,7 +147,7 @@ impl Light {
     /// True when `strategy` leaves this light nothing to draw: an environment with
     /// nothing above its mean under MIS compensation
     /// ([`Environment::compensation_is_empty`]). Its light samples would all be empty, so
-    /// light selection gives it probability zero ([`select::Selector::new`]).
+    /// light selection gives it probability zero ([`select::Selector::for_strategy`]).
     pub fn draws_no_samples(&self, strategy: LightStrategy) -> bool {
         matches!(self, Light::Environment(e) if strategy.env_compensation && e.compensation_is_empty())
     }

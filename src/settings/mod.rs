@@ -106,7 +106,8 @@ named_enum! {
 named_enum! {
     /// Light selection strategy, by CLI name.
     pub enum LightSelect: "light selection" {
-        /// i = ⌊ξ·n⌋ (lecture solution #1).
+        /// i = ⌊ξ·n⌋ (lecture solution #1); among the lights that draw samples when some
+        /// draw none (a compensated constant sky: an alias table of equal weights).
         Uniform => "uniform",
         /// ∝ emitted power Φ, by an alias table (lecture solution #2).
         Power => "power",

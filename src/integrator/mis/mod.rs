@@ -87,7 +87,8 @@ pub(super) fn estimate_with(
 ) -> Spectrum {
     let (n, m) = (mis.light_samples as f32, mis.bsdf_samples as f32);
     if mis.heuristic == MisHeuristic::OneSample {
-        let c_light = n / (n + m);
+        // With no light to draw from, every estimate takes the BSDF technique.
+        let c_light = if ctx.lights_sample { n / (n + m) } else { 0.0 };
         // f / Σ_k c_k p_k: the balance heuristic over the choice probability.
         let scale =
             |p_light: f32, p_bsdf: f32| 1.0 / (c_light * p_light + (1.0 - c_light) * p_bsdf);

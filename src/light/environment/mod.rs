@@ -239,7 +239,7 @@ impl Environment {
     }
 
     /// A constant environment of radiance `l` (Mitsuba's `constant`), sampled uniformly
-    /// over the sphere.
+    /// over the sphere (not at all under MIS compensation).
     pub fn constant(l: Spectrum) -> Environment {
         Environment {
             radiance: Radiance::Constant(l),
@@ -269,9 +269,11 @@ impl Environment {
             .map_err(bad)?
             .into();
         // Compensation (Karlík et al. 2019): texel weights max(0, L − L̄) with
-        // L̄ = ∫L dω / 4π, where some texel is above the mean.
+        // L̄ = ∫L dω / 4π, where some texel's luminance is above the mean by more than
+        // the mean's rounding (a uniform map of any size has none; pbrt-v4 samples such
+        // a map uniformly instead, lightlab not at all, see `compensation_is_empty`).
         let mean = integral / (4.0 * PI);
-        let compensated = match luminance.iter().any(|&l| l > mean) {
+        let compensated = match luminance.iter().any(|&l| l > mean * (1.0 + 1e-4)) {
             true => Some(CellDistribution::new(&luminance, mean, w, h).map_err(bad)?),
             false => None,
         };

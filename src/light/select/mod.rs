@@ -65,7 +65,19 @@ impl Selector {
     /// it cannot contribute, its sample is zero anyway), so no per-point selection work
     /// is done: uniform choice.
     pub fn new(kind: LightSelect, lights: &[Light]) -> Selector {
-        Selector::for_strategy(kind, lights, LightStrategy::default())
+        if lights.len() == 1 {
+            return Selector::Uniform(UniformSelector::new(1));
+        }
+        match kind {
+            LightSelect::Uniform => Selector::Uniform(UniformSelector::new(lights.len())),
+            LightSelect::Power => {
+                let powers: Vec<f32> = lights.iter().map(|l| l.power()).collect();
+                Selector::Power(PowerSelector::new(&powers))
+            }
+            LightSelect::Adaptive => Selector::Adaptive(AdaptiveSelector::new(lights)),
+            // Resampling draws its candidates from the light BVH (see `integrator::ris`).
+            LightSelect::Bvh | LightSelect::Ris => Selector::Bvh(BvhSelector::new(lights)),
+        }
     }
 
     /// [`Selector::new`] for lights sampled with `strategy`: a light that draws no
@@ -73,43 +85,47 @@ impl Selector {
     /// compensation) gets probability zero, so that its turns go to lights that have
     /// samples to give, unless no light has any.
     pub fn for_strategy(kind: LightSelect, lights: &[Light], strategy: LightStrategy) -> Selector {
-        if lights.len() == 1 {
-            return Selector::Uniform(UniformSelector::new(1));
-        }
-        let mut silent: Vec<bool> = lights
-            .iter()
-            .map(|l| l.draws_no_samples(strategy))
-            .collect();
-        if silent.iter().all(|&s| s) {
-            silent.fill(false);
-        }
-        let any_silent = silent.contains(&true);
-        match kind {
-            LightSelect::Uniform if !any_silent => {
-                Selector::Uniform(UniformSelector::new(lights.len()))
-            }
-            // Uniform among the lights with samples: equal weights in the alias table.
-            LightSelect::Uniform => {
-                let weights: Vec<f32> = silent.iter().map(|&s| if s { 0.0 } else { 1.0 }).collect();
-                Selector::Power(PowerSelector::new(&weights))
-            }
-            LightSelect::Power => {
-                let powers: Vec<f32> = lights
-                    .iter()
-                    .zip(&silent)
-                    .map(|(l, &s)| if s { 0.0 } else { l.power() })
-                    .collect();
-                Selector::Power(PowerSelector::new(&powers))
-            }
-            LightSelect::Adaptive => {
-                Selector::Adaptive(AdaptiveSelector::new(lights).excluding(&silent))
-            }
-            // Resampling draws its candidates from the light BVH (see `integrator::ris`).
-            LightSelect::Bvh | LightSelect::Ris => {
-                Selector::Bvh(BvhSelector::new(lights).excluding(&silent))
-            }
+        let selector = Selector::new(kind, lights);
+        match silent_lights(lights, strategy) {
+            Some(silent) => selector.excluding(lights, &silent),
+            None => selector,
         }
     }
+
+    /// The same selector over `lights` giving those marked in `silent` probability zero:
+    /// `uniform` becomes uniform among the others (an alias table of equal weights, so
+    /// the same u may name another light than ⌊u·n⌋), `power` gives them power zero,
+    /// `adaptive` and `bvh` leave them out. A one-light selector is kept as it is.
+    pub fn excluding(self, lights: &[Light], silent: &[bool]) -> Selector {
+        let weights = |weight: &dyn Fn(&Light) -> f32| -> Vec<f32> {
+            lights
+                .iter()
+                .zip(silent)
+                .map(|(l, &s)| if s { 0.0 } else { weight(l) })
+                .collect()
+        };
+        match self {
+            Selector::Uniform(_) if lights.len() > 1 => {
+                Selector::Power(PowerSelector::new(&weights(&|_| 1.0)))
+            }
+            Selector::Power(_) => Selector::Power(PowerSelector::new(&weights(&|l| l.power()))),
+            Selector::Adaptive(a) => Selector::Adaptive(a.excluding(silent)),
+            Selector::Bvh(b) => Selector::Bvh(b.excluding(silent)),
+            one => one,
+        }
+    }
+}
+
+/// Which of `lights` draw no samples under `strategy` ([`Light::draws_no_samples`]), or
+/// `None` when none does, or when all do (they then keep their turns: their samples are
+/// empty anyway, and a selector over no light would leave the light technique with no
+/// density at all).
+pub fn silent_lights(lights: &[Light], strategy: LightStrategy) -> Option<Vec<bool>> {
+    let silent: Vec<bool> = lights
+        .iter()
+        .map(|l| l.draws_no_samples(strategy))
+        .collect();
+    (silent.contains(&true) && silent.contains(&false)).then_some(silent)
 }
 
 impl LightSelector for Selector {
@@ -223,6 +239,11 @@ mod tests {
                 let sel = s.select(&AT, k as f32 / 1000.0).expect("a light");
                 assert_ne!(sel.index, 1, "{kind}");
                 assert_eq!(sel.pmf, s.pmf(&AT, sel.index), "{kind}");
+            }
+            if kind == LightSelect::Uniform {
+                for i in [0, 2, 3] {
+                    assert!((s.pmf(&AT, i) - 1.0 / 3.0).abs() < 1e-6, "uniform: {i}");
+                }
             }
             // Nothing but skies: they keep their turns (their samples are empty anyway).
             let skies = Selector::for_strategy(kind, &[sky(), sky()], compensated);
