@@ -223,7 +223,9 @@ fn without_pass(settings: &str) -> String {
 
 /// Merges renders of the same image (passes of one render, or renders with other
 /// seeds) by Chan et al.'s pairwise update, as `lightlab merge` does: sample-weighted,
-/// variance kept. All passes of one render give that render (up to summation order).
+/// variance kept. All passes of one render give that render (up to summation order),
+/// except under optimal MIS, where each pass learns its own α: then an unbiased
+/// estimate of the same image, not that render's bits.
 #[pyfunction]
 pub fn merge(results: Vec<PyRef<'_, PyRender>>) -> PyResult<PyRender> {
     let mut parts: Vec<&Rendered> = results.iter().map(|r| &r.0).collect();

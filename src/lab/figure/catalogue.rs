@@ -166,11 +166,13 @@ pub const FIGURES: &[Figure] = &[
     },
     Figure {
         name: "projected-solid-angle",
-        description: "solid angle vs solid angle after the bilinear cos θ warp (Hart et al. 2020) vs exact projected solid angle (∝ cos θ above the horizon, after Peters 2021), light estimator, for a rectangle, a mesh of triangles and a concave polygon; on the Lambertian plane projected solid angle leaves only the shadows' noise",
+        description: "solid angle vs solid angle after the bilinear cos θ warp (Hart et al. 2020) vs exact projected solid angle (∝ cos θ above the horizon, after Peters 2021), light estimator, for a rectangle, a mesh of triangles, a concave polygon and `assignment`'s small square; on the Lambertian plane projected solid angle leaves only the shadows' noise",
         kind: FigureKind::Panels(&[
             projected_panel("rectangle", "builtin:sphere-near-plane?emitters=rectangle"),
             projected_panel("triangle", "builtin:sphere-near-plane?emitters=mesh"),
             projected_panel("polygon", "builtin:sphere-near-plane?emitters=polygon"),
+            // The target scene: a small light, over which the cosine barely varies.
+            projected_panel("assignment", "builtin:assignment"),
         ]),
     },
     Figure {
