@@ -12,7 +12,7 @@ use lightlab::geometry::Ray;
 use lightlab::image::Film;
 use lightlab::integrator::{Estimator, EstimatorKind, MisHeuristic, MisSettings};
 use lightlab::light::environment::LatLongImage;
-use lightlab::light::select::LightSelect;
+use lightlab::light::select::{LightSelect, LightSelector};
 use lightlab::light::{Environment, LightStrategy};
 use lightlab::math::Spectrum;
 use lightlab::render::{RenderSettings, render_quiet};
@@ -99,7 +99,7 @@ fn white_furnace_is_one_for_every_estimator() {
                     heuristic,
                     ..MisSettings::default()
                 })
-                .with_light_strategy(&scene, COMPENSATED);
+                .with_light_strategy(&scene, compensated());
             let (mean, se) = estimate_with(&compensated, &scene, &ray, 10_000);
             assert!(
                 (mean - 1.0).abs() < 1e-5 && se < 1e-6,
@@ -150,7 +150,7 @@ fn constant_environment_gives_irradiance_pi_l_on_a_plane() {
             );
         }
         let compensated = Estimator::new(&scene, EstimatorKind::Mis, LightSelect::Bvh)
-            .with_light_strategy(&scene, COMPENSATED);
+            .with_light_strategy(&scene, compensated());
         assert_close(
             &format!("plane map={map} mis, compensated"),
             estimate_with(&compensated, &scene, &ray, 100_000),
@@ -159,14 +159,14 @@ fn constant_environment_gives_irradiance_pi_l_on_a_plane() {
     }
 }
 
-/// Light sampling as `render` sets it up under `--estimator mis`: solid angle where it
-/// is best, environments with MIS compensation.
-const COMPENSATED: LightStrategy = LightStrategy {
-    sampling: lightlab::light::LightSampling::Best,
-    env_compensation: true,
-    horizon_rejection: true,
-    fast_paths: true,
-};
+/// Light sampling as `render` sets it up under `--estimator mis`: environments with MIS
+/// compensation.
+fn compensated() -> LightStrategy {
+    LightStrategy {
+        env_compensation: true,
+        ..LightStrategy::default()
+    }
+}
 
 /// A plane under a constant environment and a sphere light straight above the shading
 /// point. The sphere (radius r at distance d) hides a cap of the sky of projected solid
@@ -208,6 +208,16 @@ fn compensated_constant_environment_gives_its_turns_to_the_other_lights() {
     let exact = rho as f64 * (l_env as f64 * (1.0 - sin2) + l_s as f64 * sin2);
     // Seen from (0.5, 2, 2) towards the origin, past the sphere.
     let ray = Ray::new(Vec3::new(0.5, 2.0, 2.0), Vec3::new(-0.5, -2.0, -2.0));
+    let env = scene
+        .lights
+        .iter()
+        .position(|l| l.is_infinite())
+        .expect("sky");
+    let at = lightlab::light::ShadingPoint {
+        p: Vec3::ZERO,
+        ng: Vec3::Y,
+        n: Vec3::Y,
+    };
     for select in [
         LightSelect::Uniform,
         LightSelect::Power,
@@ -225,18 +235,7 @@ fn compensated_constant_environment_gives_its_turns_to_the_other_lights() {
                     heuristic,
                     ..MisSettings::default()
                 })
-                .with_light_strategy(&scene, COMPENSATED);
-            let env = scene
-                .lights
-                .iter()
-                .position(|l| l.is_infinite())
-                .expect("sky");
-            let at = lightlab::light::ShadingPoint {
-                p: Vec3::ZERO,
-                ng: Vec3::Y,
-                n: Vec3::Y,
-            };
-            use lightlab::light::select::LightSelector;
+                .with_light_strategy(&scene, compensated());
             assert_eq!(est.selector.pmf(&at, env), 0.0, "{select}");
             assert_close(
                 &format!("sphere and sky, {select}, {heuristic}"),

@@ -52,11 +52,14 @@ pub fn budget(spp: Option<u32>, time: Option<f64>) -> Result<Budget, CliError> {
     match (spp, time) {
         (Some(0), _) => Err(CliError::input("--spp must be at least 1")),
         (Some(n), None) => Ok(Budget::Spp(n)),
-        (None, Some(t)) => time_budget(t)
-            .map(Budget::Time)
-            .map_err(|e| CliError::input(format!("--time {e}"))),
+        (None, Some(t)) => time_flag(t).map(Budget::Time),
         _ => Err(CliError::input("give --spp N or --time SECS")),
     }
+}
+
+/// The value of `--time SECS` as a duration, or an input error naming the flag.
+pub fn time_flag(seconds: f64) -> Result<std::time::Duration, CliError> {
+    time_budget(seconds).map_err(|e| CliError::input(format!("--time {e}")))
 }
 
 /// The reference source: the file, or the renderer's default strategy at `spp`.

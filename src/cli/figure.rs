@@ -7,7 +7,6 @@ use clap::Args;
 use super::CliError;
 use super::lab_args::LabRenderArgs;
 use super::render::{STOP, install_stop_handler, step_bar};
-use crate::lab::budget::time_budget;
 use crate::lab::compare::CompareConfig;
 use crate::lab::figure::{FIGURES, FigureOptions, find, plan, run_figure};
 
@@ -44,11 +43,7 @@ pub fn run(args: &FigureArgs) -> Result<(), CliError> {
     let options = FigureOptions {
         base: args.render.base(),
         spp: args.spp,
-        time: args
-            .time
-            .map(time_budget)
-            .transpose()
-            .map_err(|e| CliError::input(format!("--time {e}")))?,
+        time: args.time.map(super::compare::time_flag).transpose()?,
         reference_spp: args.reference_spp,
         converge: args.converge,
     };

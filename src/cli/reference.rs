@@ -13,7 +13,6 @@ use super::render::{STOP, install_stop_handler};
 use super::{CliError, StrategyArgs};
 use crate::image::io::write_film_with_metadata;
 use crate::image::output::check_output;
-use crate::lab::budget::time_budget;
 use crate::lab::merge::provenance;
 use crate::lab::reference::{ReferenceTarget, render_reference};
 use crate::lab::report::{VERSION, command_line};
@@ -58,7 +57,7 @@ pub fn run(args: &ReferenceArgs) -> Result<(), CliError> {
         rel_error: args.rel_error,
         max_spp: args.strategy.0.spp,
         max_time: match args.time {
-            Some(t) => Some(time_budget(t).map_err(|e| CliError::input(format!("--time {e}")))?),
+            Some(t) => Some(super::compare::time_flag(t)?),
             None => None,
         },
     };

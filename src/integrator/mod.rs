@@ -134,20 +134,16 @@ impl Estimator {
 
     /// The same estimator sampling the lights of `scene` (the scene it was made for) with
     /// `lights`; its light selection leaves out lights that draw nothing under them
-    /// ([`Selector::for_strategy`]).
+    /// ([`Selector::without_silent`]).
     /// Compensation only applies under `mis` (it would be biased with the others).
     pub fn with_light_strategy(mut self, scene: &Scene, mut lights: LightStrategy) -> Estimator {
         lights.env_compensation &= self.kind == EstimatorKind::Mis;
         if self.selector_excludes {
             self.selector = Selector::new(self.select, &scene.lights);
-            self.selector_excludes = false;
         }
         // The selector is patched, not rebuilt: a light BVH over 10⁶ lights takes a while.
-        if let Some(silent) = silent_lights(&scene.lights, lights) {
-            let plain = std::mem::replace(&mut self.selector, Selector::new(self.select, &[]));
-            self.selector = plain.excluding(&scene.lights, &silent);
-            self.selector_excludes = true;
-        }
+        self.selector_excludes = silent_lights(&scene.lights, lights).is_some();
+        self.selector = self.selector.without_silent(&scene.lights, lights);
         self.lights_sample = scene.lights.iter().any(|l| !l.draws_no_samples(lights));
         self.lights = lights;
         self

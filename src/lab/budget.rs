@@ -146,6 +146,21 @@ fn render_timed(
     }
 }
 
+/// The samples per pixel of a timed render's next round, with `left` seconds left at
+/// `per_spp` seconds per spp and sample indices used up to `used`: a quarter of the time
+/// left, at least one spp (it converges to the budget from below, and a round cut by the
+/// deadline overshoots by at most one of `render`'s rounds), at most 2²⁰ spp, and never
+/// past the last u32 sample index (`--time 1e9` asked for more; zero when none is left).
+fn next_round_spp(left: f64, per_spp: f64, used: u32) -> u32 {
+    let want = (0.25 * left / per_spp).ceil().min((1u32 << 20) as f64) as u32;
+    want.max(1).min(u32::MAX - used)
+}
+
+/// Samples per pixel rendered so far.
+fn total_spp(total: &Option<RenderOutput>) -> u32 {
+    total.as_ref().map_or(0, |t| t.spp)
+}
+
 /// The rounds of a timed render (see the module docs), handing `carry` from each to
 /// the next.
 fn rounds(
@@ -162,7 +177,7 @@ fn rounds(
     // renders under new seeds. The other samplers continue one sequence.
     let continues = settings.sampler != SamplerKind::Stratified;
     for k in 0.. {
-        let done = total.as_ref().map_or(0, |t| t.spp);
+        let done = total_spp(&total);
         let s = RenderSettings {
             spp: spp_next,
             seed: if continues {
@@ -187,10 +202,11 @@ fn rounds(
         if stopped || left < 0.5 * per_spp {
             break;
         }
-        // A quarter of the time left, at least one spp: converges to the budget from
-        // below, and a round cut by the deadline overshoots by at most one of `render`'s
-        // rounds.
-        spp_next = ((0.25 * left / per_spp).ceil() as u32).max(1);
+        let used = settings.first_sample.saturating_add(total_spp(&total));
+        spp_next = next_round_spp(left, per_spp, used);
+        if spp_next == 0 {
+            break; // every u32 sample index is used
+        }
     }
     total.expect("at least one round ran")
 }
@@ -230,11 +246,7 @@ mod tests {
         s.resolution = Some((32, 24));
         let stop = AtomicBool::new(false);
         let limit = Duration::from_millis(300);
-        let control = Control {
-            progress: &|_, _| {},
-            stop: &stop,
-            frame: None,
-        };
+        let control = Control::quiet(&stop);
         let out = render_budget(&scene, &s, Budget::Time(limit), &control);
         // How close the time comes to the budget is measured outside the tests (`render
         // --time`, BENCHMARKS.md); here: several rounds, every pixel with every sample.
@@ -243,17 +255,21 @@ mod tests {
         assert_ne!(round_seed(3, 1), 3);
     }
 
+    #[test]
+    fn a_round_asks_for_at_most_a_million_spp_and_no_index_past_u32() {
+        assert_eq!(next_round_spp(1.0, 0.01, 0), 25);
+        assert_eq!(next_round_spp(1e-9, 0.01, 0), 1);
+        assert_eq!(next_round_spp(1e9, 0.001, 0), 1 << 20);
+        assert_eq!(next_round_spp(1e18, 1e-9, u32::MAX - 5), 5);
+    }
+
     /// Under optimal MIS the rounds of a timed render hand their α on: the carry comes
     /// back filled (dropping it in `rounds` leaves it empty).
     #[test]
     fn timed_optimal_mis_rounds_carry_their_alpha() {
         let (scene, s) = crate::render::optimal_mis_veach(32, 24);
         let stop = AtomicBool::new(false);
-        let control = Control {
-            progress: &|_, _| {},
-            stop: &stop,
-            frame: None,
-        };
+        let control = Control::quiet(&stop);
         let mut carry = Carry::default();
         let start = Instant::now();
         let out = rounds(
@@ -277,11 +293,7 @@ mod tests {
         s.resolution = Some((32, 24));
         s.sampler = SamplerKind::Sobol;
         let stop = AtomicBool::new(false);
-        let control = Control {
-            progress: &|_, _| {},
-            stop: &stop,
-            frame: None,
-        };
+        let control = Control::quiet(&stop);
         let timed = render_budget(
             &scene,
             &s,

@@ -107,11 +107,7 @@ pub fn run_compare(
     let mut results = Vec::new();
     let mut films = Vec::new();
     for (strategy, s) in config.strategies.iter().zip(&settings) {
-        let control = Control {
-            progress: &|_, _| {},
-            stop,
-            frame: None,
-        };
+        let control = Control::quiet(stop);
         let out = render_budget(&scene, s, config.budget, &control);
         let means = out.film.means();
         let variance: Vec<_> = out

@@ -109,11 +109,7 @@ pub fn render_reference(
     progress: &dyn Fn(u32, &ErrorEstimate),
 ) -> Reference {
     let start = Instant::now();
-    let control = Control {
-        progress: &|_, _| {},
-        stop,
-        frame: None,
-    };
+    let control = Control::quiet(stop);
     let mut total: Option<RenderOutput> = None;
     let mut pass_spp = 4u32;
     let mut passes = 0;
@@ -202,11 +198,7 @@ mod tests {
         };
         let reference = render_reference(&scene, &s, &target, &stop, &|_, _| {});
         assert_eq!((reference.passes, reference.output.spp), (2, 12));
-        let control = Control {
-            progress: &|_, _| {},
-            stop: &stop,
-            frame: None,
-        };
+        let control = Control::quiet(&stop);
         let pass = |k: u32, spp: u32, carry: &mut Carry| {
             let p = RenderSettings {
                 spp,
@@ -221,13 +213,7 @@ mod tests {
         let mut carry = Carry::default();
         let first = pass(0, 4, &mut carry);
         let afresh = RenderOutput::merge(Some(first), pass(1, 8, &mut Carry::default()));
-        let bits = |o: &RenderOutput| -> Vec<[u32; 3]> {
-            o.film
-                .pixels
-                .iter()
-                .map(|p| p.mean.to_array().map(f32::to_bits))
-                .collect()
-        };
+        let bits = |o: &RenderOutput| crate::render::mean_bits(&o.film);
         assert_eq!(bits(&reference.output), bits(&carried));
         assert_ne!(bits(&carried), bits(&afresh));
     }

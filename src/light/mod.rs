@@ -146,10 +146,10 @@ impl Light {
 
     /// True when `strategy` leaves this light nothing to draw: an environment with
     /// nothing above its mean under MIS compensation
-    /// ([`Environment::compensation_is_empty`]). Its light samples would all be empty, so
-    /// light selection gives it probability zero ([`select::Selector::for_strategy`]).
+    /// (no [`Environment::has_compensation`]). Its light samples would all be empty, so
+    /// light selection gives it probability zero ([`select::Selector::without_silent`]).
     pub fn draws_no_samples(&self, strategy: LightStrategy) -> bool {
-        matches!(self, Light::Environment(e) if strategy.env_compensation && e.compensation_is_empty())
+        matches!(self, Light::Environment(e) if strategy.env_compensation && !e.has_compensation())
     }
 
     /// True for lights at infinity (no point to aim a shadow segment at).

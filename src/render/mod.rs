@@ -93,6 +93,17 @@ pub struct Control<'a> {
     pub frame: Option<&'a (dyn Fn(&Film) + Sync)>,
 }
 
+impl<'a> Control<'a> {
+    /// No progress report and no live view; stops when `stop` is set.
+    pub fn quiet(stop: &'a AtomicBool) -> Control<'a> {
+        Control {
+            progress: &|_, _| {},
+            stop,
+            frame: None,
+        }
+    }
+}
+
 /// What one render of an image hands on to the next render of the same image (the
 /// rounds of a timed render, a reference's passes): under optimal MIS, every pixel's α
 /// and technique moments, so that the next call starts from all the samples so far
@@ -361,15 +372,16 @@ fn round_boundaries(first: u32, last: u32, pixels: u64, eighths: bool) -> Vec<u3
 /// A render with no progress output and no stop request.
 pub fn render_quiet(scene: &Scene, settings: &RenderSettings) -> RenderOutput {
     let stop = AtomicBool::new(false);
-    render(
-        scene,
-        settings,
-        &Control {
-            progress: &|_, _| {},
-            stop: &stop,
-            frame: None,
-        },
-    )
+    render(scene, settings, &Control::quiet(&stop))
+}
+
+/// The bits of every pixel mean of `film` (tests compare images bit for bit).
+#[cfg(test)]
+pub(crate) fn mean_bits(film: &Film) -> Vec<[u32; 3]> {
+    film.pixels
+        .iter()
+        .map(|p| p.mean.to_array().map(f32::to_bits))
+        .collect()
 }
 
 #[cfg(test)]
@@ -446,13 +458,7 @@ mod tests {
             settings.filter,
             &one_by_one,
         );
-        let bits = |f: &Film| -> Vec<[u32; 3]> {
-            f.pixels
-                .iter()
-                .map(|p| p.mean.to_array().map(f32::to_bits))
-                .collect()
-        };
-        assert_eq!(bits(&rendered), bits(&film));
+        assert_eq!(mean_bits(&rendered), mean_bits(&film));
     }
 
     /// Under optimal MIS a render continued from a [`Carry`] uses the α of the samples
@@ -463,11 +469,7 @@ mod tests {
         let (scene, mut settings) = optimal_mis_veach(48, 32);
         settings.spp = 8;
         let stop = AtomicBool::new(false);
-        let control = Control {
-            progress: &|_, _| {},
-            stop: &stop,
-            frame: None,
-        };
+        let control = Control::quiet(&stop);
         let mut carry = Carry::default();
         render_carrying(&scene, &settings, &control, &mut carry);
         let learnt = carry
@@ -480,17 +482,12 @@ mod tests {
             first_sample: 8,
             ..settings.clone()
         };
-        let mean = |f: &Film| -> Vec<[u32; 3]> {
-            f.pixels
-                .iter()
-                .map(|p| p.mean.to_array().map(f32::to_bits))
-                .collect()
-        };
-        let continued = render_carrying(&scene, &next, &control, &mut carry).film;
-        let afresh = render_carrying(&scene, &next, &control, &mut Carry::default()).film;
-        assert_eq!(mean(&afresh), mean(&render_quiet(&scene, &next).film));
-        let differ = (0..afresh.pixels.len())
-            .filter(|&i| mean(&continued)[i] != mean(&afresh)[i])
+        let continued = mean_bits(&render_carrying(&scene, &next, &control, &mut carry).film);
+        let afresh =
+            mean_bits(&render_carrying(&scene, &next, &control, &mut Carry::default()).film);
+        assert_eq!(afresh, mean_bits(&render_quiet(&scene, &next).film));
+        let differ = (0..afresh.len())
+            .filter(|&i| continued[i] != afresh[i])
             .count();
         assert!(differ > 48 * 32 / 4, "{differ} pixels differ");
     }

@@ -98,7 +98,8 @@ named_enum! {
         /// emitter over a Lambertian receiver gives every sample the same value.
         ProjectedSolidAngle => "projected-solid-angle",
         /// Per shape, the strategy of lowest measured relMSE × time (solid angle on most
-        /// shapes, area on disks and small triangles; `LightSampling::resolve`).
+        /// shapes; area on disks, small triangles and textured rectangles and disks;
+        /// `LightSampling::resolve`).
         Best => "best",
     }
 }

@@ -271,7 +271,7 @@ impl Environment {
         // Compensation (Karlík et al. 2019): texel weights max(0, L − L̄) with
         // L̄ = ∫L dω / 4π, where some texel's luminance is above the mean by more than
         // the mean's rounding (a uniform map of any size has none; pbrt-v4 samples such
-        // a map uniformly instead, lightlab not at all, see `compensation_is_empty`).
+        // a map uniformly instead, lightlab not at all, see `has_compensation`).
         let mean = integral / (4.0 * PI);
         let compensated = match luminance.iter().any(|&l| l > mean * (1.0 + 1e-4)) {
             true => Some(CellDistribution::new(&luminance, mean, w, h).map_err(bad)?),
@@ -305,7 +305,7 @@ impl Environment {
     /// Draws a world direction; returns it with its radiance and solid-angle density.
     /// `compensate` samples the MIS-compensated distribution (see
     /// [`Environment::has_compensation`]), which is empty, so that nothing is drawn, for
-    /// an environment with nothing above its mean ([`Environment::compensation_is_empty`]).
+    /// an environment with nothing above its mean ([`Environment::has_compensation`]).
     #[inline]
     pub fn sample(&self, u: Vec2, compensate: bool) -> Option<(Vec3, Spectrum, f32)> {
         match &self.radiance {
@@ -392,28 +392,20 @@ impl Environment {
         }
     }
 
-    /// Whether MIS compensation leaves this environment nothing to sample: a constant,
-    /// or a map with no texel above its mean (max(0, L − L̄) = 0 everywhere). Karlík et
-    /// al. 2019 note that for a constant environment the compensated technique vanishes
-    /// and BSDF sampling alone remains: under compensation such an environment draws no
-    /// samples and has density zero in every direction, so the BSDF samples that escape
-    /// take MIS weight one, and light selection gives it probability zero where another
-    /// light can use the sample ([`crate::light::Light::draws_no_samples`]).
-    pub fn compensation_is_empty(&self) -> bool {
-        match &self.radiance {
-            Radiance::Constant(_) => true,
-            Radiance::Map { compensated, .. } => compensated.is_none(),
-        }
-    }
-
     /// Whether the map has an MIS-compensated distribution (Karlík, Šik, Vévoda, Skřivan &
     /// Křivánek 2019, "MIS Compensation: Optimizing Sampling Techniques in Multiple
     /// Importance Sampling"): texel weights max(0, L − L̄) instead of L, interpolated
     /// bilinearly as the plain ones are, where L̄ is the mean radiance over the sphere.
     /// Directions whose four nearest texels are all at or below the mean get density zero
-    /// under it, so it is only unbiased inside MIS, whose BSDF strategy covers them. A map
-    /// with no texel above its mean (uniform), like a constant environment, has none:
-    /// compensated, it draws nothing ([`Environment::compensation_is_empty`]).
+    /// under it, so it is only unbiased inside MIS, whose BSDF strategy covers them.
+    ///
+    /// A constant environment, and a map whose luminance nowhere exceeds its mean by more
+    /// than the mean's rounding (10⁻⁴ relative: uniform), have none: max(0, L − L̄) = 0
+    /// everywhere. Karlík et al. note that the compensated technique then vanishes and
+    /// BSDF sampling alone remains: compensated, such an environment draws no samples and
+    /// has density zero in every direction, so the BSDF samples that escape take MIS
+    /// weight one, and light selection gives it probability zero where another light can
+    /// use the sample ([`crate::light::Light::draws_no_samples`]).
     pub fn has_compensation(&self) -> bool {
         matches!(
             &self.radiance,

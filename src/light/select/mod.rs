@@ -85,10 +85,15 @@ impl Selector {
     /// compensation) gets probability zero, so that its turns go to lights that have
     /// samples to give, unless no light has any.
     pub fn for_strategy(kind: LightSelect, lights: &[Light], strategy: LightStrategy) -> Selector {
-        let selector = Selector::new(kind, lights);
+        Selector::new(kind, lights).without_silent(lights, strategy)
+    }
+
+    /// The same selector over `lights` with the lights that draw no samples under
+    /// `strategy` left out ([`silent_lights`]; unchanged when there are none).
+    pub fn without_silent(self, lights: &[Light], strategy: LightStrategy) -> Selector {
         match silent_lights(lights, strategy) {
-            Some(silent) => selector.excluding(lights, &silent),
-            None => selector,
+            Some(silent) => self.excluding(lights, &silent),
+            None => self,
         }
     }
 
