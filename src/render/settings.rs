@@ -147,7 +147,23 @@ impl RenderSettings {
     pub fn lights_summary(&self, scene: &Scene) -> String {
         if self.samples_lights() {
             let summary = sampling_summary(&scene.lights, Some(self.light_sampling));
-            format!("lights: {summary}")
+            let strategy = self.light_strategy();
+            let silent = scene
+                .lights
+                .iter()
+                .filter(|l| l.draws_no_samples(strategy))
+                .count();
+            match silent {
+                0 => format!("lights: {summary}"),
+                1 => format!(
+                    "lights: {summary}; under MIS compensation the uniform environment draws \
+                     no light samples (the BSDF samples light it)"
+                ),
+                n => format!(
+                    "lights: {summary}; under MIS compensation the {n} uniform environments \
+                     draw no light samples (the BSDF samples light them)"
+                ),
+            }
         } else {
             let summary = sampling_summary(&scene.lights, None);
             format!(
@@ -225,6 +241,31 @@ fn resolution(camera: &Camera, width: Option<u32>, height: Option<u32>) -> Optio
 mod tests {
     use super::*;
     use crate::scene;
+
+    /// The summary says when MIS compensation leaves a constant sky to the BSDF samples,
+    /// and only then.
+    #[test]
+    fn the_summary_names_a_sky_that_draws_no_light_samples() {
+        let scene = scene::load("tests/scenes/constant_env.xml").expect("scene");
+        let mis = RenderSettings::for_scene(&scene);
+        assert_eq!(mis.estimator, EstimatorKind::Mis);
+        let text = mis.lights_summary(&scene);
+        assert!(
+            text.contains("the uniform environment draws no light samples"),
+            "{text}"
+        );
+        let plain = RenderSettings {
+            envmap_compensation: false,
+            ..mis.clone()
+        };
+        assert!(!plain.lights_summary(&scene).contains("draws no"));
+        let light = RenderSettings {
+            estimator: EstimatorKind::Light,
+            envmap_compensation: false,
+            ..mis
+        };
+        assert!(!light.lights_summary(&scene).contains("draws no"));
+    }
 
     #[test]
     fn layers_apply_in_order_and_round_trip() {
