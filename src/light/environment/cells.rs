@@ -14,7 +14,8 @@
 
 use glam::Vec2;
 
-use super::{LatLongImage, TexelCell};
+use super::LatLongImage;
+use super::image::TexelCell;
 use crate::math::{PI, Spectrum, spectrum::luminance};
 use crate::sampling::distribution::{DistributionError, PiecewiseConstant2D};
 use crate::sampling::sampler::ONE_MINUS_EPSILON;

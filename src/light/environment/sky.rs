@@ -4,7 +4,8 @@
 
 use glam::{Vec2, Vec3};
 
-use super::{LatLongImage, uv_to_direction};
+use super::LatLongImage;
+use super::image::uv_to_direction;
 use crate::math::Spectrum;
 
 /// Parameters of [`procedural_sky`].
