@@ -3,6 +3,7 @@
 
 pub mod aabb;
 pub mod bvh;
+pub mod flat;
 pub mod hit;
 pub mod leaf_blocks;
 pub mod mesh;

@@ -4,6 +4,7 @@
 use glam::{Vec2, Vec3};
 
 use super::bvh::{Bvh, PACKET, PADDING};
+use super::flat::{FLAT_BLOCKS, FLAT_MAX, FlatShapes};
 use super::hit::{NO_LIGHT, SurfaceHit};
 use super::leaf_blocks::{LeafBlocks, wants_blocks};
 use super::mesh::Mesh;
@@ -35,6 +36,9 @@ pub struct Geometry {
     /// The emitting primitives behind a BVH of their own, for [`Geometry::first_emitter`];
     /// `None` where they are more than [`EMITTER_SHARE`] of all primitives.
     emitters: Option<Emitters>,
+    /// Every primitive in SIMD blocks by kind, where they fill at most [`FLAT_BLOCKS`]:
+    /// then the queries test them all instead of walking the BVH (see [`FlatShapes`]).
+    flat: Option<FlatShapes>,
 }
 
 /// The emitting primitives: their BVH, and for each of its leaf positions the primitive
@@ -90,6 +94,15 @@ impl Geometry {
             .filter(|&i| prims[i as usize].light != NO_LIGHT && !is_padding(i as usize))
             .collect();
         let real = (0..prims.len()).filter(|&i| !is_padding(i)).count();
+        let flat = (real <= FLAT_MAX)
+            .then(|| {
+                let listed: Vec<(u32, Primitive)> = (0..prims.len())
+                    .filter(|&i| !is_padding(i))
+                    .map(|i| (i as u32, prims[i]))
+                    .collect();
+                FlatShapes::new(&listed)
+            })
+            .filter(|flat| flat.block_count() <= FLAT_BLOCKS);
         let emitters = (emitting.len() as f32 <= EMITTER_SHARE * real as f32).then(|| {
             let bounds: Vec<Aabb> = emitting
                 .iter()
@@ -109,6 +122,7 @@ impl Geometry {
             bvh,
             blocks,
             emitters,
+            flat,
         }
     }
 
@@ -146,6 +160,10 @@ impl Geometry {
     /// The closest hit of `ray` in (0, t_max), with its shading data.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<SurfaceHit> {
+        if let Some(flat) = &self.flat {
+            let (prim, hit) = flat.closest_hit(ray, t_max)?;
+            return self.surface_hit(prim, ray, &hit);
+        }
         // Every hit a leaf reports (t below the closest so far) becomes the closest, so
         // the last one reported is the winner: keep its surface parameters.
         let mut last = None;
@@ -168,13 +186,21 @@ impl Geometry {
     /// [`Bvh::closest_hit_packet`]): ray `lane` in (0, `t_max[lane]`); lanes whose t_max is
     /// not positive take no part and get `None`. Each hit is at the single-ray query's
     /// distance, up to the visiting order's say at exact ties (see
-    /// [`Bvh::closest_hit_packet`]).
+    /// [`Bvh::closest_hit_packet`]). In a scene tested without a tree, each ray is
+    /// tested alone.
     #[inline]
     pub fn intersect_packet(
         &self,
         rays: &[Ray; PACKET],
         t_max: &[f32; PACKET],
     ) -> [Option<SurfaceHit>; PACKET] {
+        if self.flat.is_some() {
+            return std::array::from_fn(|l| {
+                (t_max[l] > 0.0)
+                    .then(|| self.intersect(&rays[l], t_max[l]))
+                    .flatten()
+            });
+        }
         // As in `intersect`: the last hit a lane's leaves report is its closest.
         let mut last = [None; PACKET];
         let found = match &self.blocks {
@@ -213,13 +239,19 @@ impl Geometry {
     /// only, so the emitter does not block itself), and one that meets none needs no
     /// traversal at all. In a scene without emitting shapes, an escape is one any-hit
     /// query. A blocker at exactly the emitter's distance, which the
-    /// closest-hit query would order by traversal, here leaves the emitter visible.
+    /// closest-hit query would order by traversal, here leaves the emitter visible. A
+    /// scene tested without a tree ([`Geometry::is_flat`]) takes the closest hit: one
+    /// pass over its blocks.
     #[inline]
     pub fn first_emitter(&self, ray: &Ray, tell_escape: bool) -> Along {
         // With escapes to tell and emitters to find, the two queries (the emitters', then
         // an any-hit one of the scene) cost more than the one closest hit: +6.8 % of
         // all instructions on `constant_env.xml` (a sphere light under a sky).
         let emitters = match &self.emitters {
+            // Without a tree, the closest hit is one pass over the blocks.
+            _ if self.flat.is_some() => {
+                return self.classify(self.intersect(ray, f32::INFINITY), tell_escape);
+            }
             Some(e) if !tell_escape || e.prims.is_empty() => e,
             _ => return self.classify(self.intersect(ray, f32::INFINITY), tell_escape),
         };
@@ -252,6 +284,9 @@ impl Geometry {
     /// True when something blocks `ray` in (0, t_max).
     #[inline]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
+        if let Some(flat) = &self.flat {
+            return flat.any_hit(ray, t_max);
+        }
         match &self.blocks {
             Some(blocks) => self.bvh.any_hit_leaf(ray, t_max, |first, _, r, t| {
                 blocks.any_hit(&self.prims, first, r, t)
@@ -316,6 +351,19 @@ impl Geometry {
         })
     }
 
+    /// The same geometry queried through its BVH even where it is small (for tests).
+    #[cfg(test)]
+    pub fn without_flat(mut self) -> Geometry {
+        self.flat = None;
+        self
+    }
+
+    /// Whether the queries test every primitive in SIMD blocks instead of walking the BVH
+    /// (a scene whose primitives fill at most [`FLAT_BLOCKS`] blocks).
+    pub fn is_flat(&self) -> bool {
+        self.flat.is_some()
+    }
+
     /// True when primitive `prim` emits.
     pub fn is_emitter(&self, prim: u32) -> bool {
         self.prims[prim as usize].light != NO_LIGHT
@@ -326,104 +374,4 @@ impl Geometry {
 mod leaf_block_tests;
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::geometry::shape::{Rectangle, Sphere};
-    use crate::sampling::rng::Rng32;
-
-    /// Spheres on a grid (every `emit_every`-th one emitting) above a floor, and a
-    /// rectangle light that a sphere half hides (with `emit_every` 0, nothing emits).
-    fn scene(emit_every: usize) -> Geometry {
-        let mut prims = Vec::new();
-        let mut light = 0;
-        for i in 0..40 {
-            let c = Vec3::new(
-                (i % 8) as f32 - 3.5,
-                0.5 + (i / 8) as f32 * 0.3,
-                (i / 8) as f32,
-            );
-            let emits = emit_every > 0 && i % emit_every == 0;
-            prims.push(Primitive {
-                shape: Shape::Sphere(Sphere::new(c, 0.3 + 0.02 * (i % 5) as f32)),
-                material: 0,
-                light: if emits { light } else { NO_LIGHT },
-            });
-            light += emits as u32;
-        }
-        let floor = Rectangle::new(Vec3::new(-5.0, 0.0, -5.0), Vec3::X * 10.0, Vec3::Z * 10.0);
-        let panel = Rectangle::new(Vec3::new(-1.0, 2.0, 1.0), Vec3::X * 2.0, Vec3::Z * 2.0);
-        prims.push(Primitive {
-            shape: Shape::Rectangle(floor.expect("rectangle")),
-            material: 0,
-            light: NO_LIGHT,
-        });
-        prims.push(Primitive {
-            shape: Shape::Rectangle(panel.expect("rectangle")),
-            material: 0,
-            light: if emit_every > 0 { light } else { NO_LIGHT },
-        });
-        Geometry::new(prims, Vec::new())
-    }
-
-    #[test]
-    fn emitter_hits_are_the_closest_hits_on_emitters() {
-        // Emitters first (with and without escapes to tell), the closest hit (more than a
-        // quarter of the primitives emit), and the any-hit escape test (none emit).
-        for (emit_every, emitters_first) in [(7, true), (2, false), (0, true)] {
-            let g = scene(emit_every);
-            assert_eq!(g.emitters.is_some(), emitters_first);
-            let mut rng = Rng32::new(17);
-            let (mut seen, mut blocked, mut escaped) = (0, 0, 0);
-            for _ in 0..20_000 {
-                let o = Vec3::new(
-                    rng.next_f32() * 10.0 - 5.0,
-                    rng.next_f32() * 3.0 + 0.01,
-                    rng.next_f32() * 6.0 - 1.0,
-                );
-                let d = Vec3::new(
-                    rng.next_f32() - 0.5,
-                    rng.next_f32() - 0.5,
-                    rng.next_f32() - 0.5,
-                );
-                let ray = Ray::new(o, d.normalize());
-                let closest = g.intersect(&ray, f32::INFINITY);
-                let expected = match closest {
-                    Some(y) if y.light != NO_LIGHT => Some((y.prim, y.t)),
-                    _ => None,
-                };
-                let (got, escapes) = match g.first_emitter(&ray, true) {
-                    Along::Emitter(y) => (Some((y.prim, y.t)), false),
-                    Along::Escapes => (None, true),
-                    Along::Blocked => (None, false),
-                };
-                assert_eq!(got, expected);
-                assert_eq!(escapes, closest.is_none());
-                match g.first_emitter(&ray, false) {
-                    Along::Emitter(y) => assert_eq!(Some((y.prim, y.t)), expected),
-                    Along::Escapes => panic!("an escape reported without being asked"),
-                    Along::Blocked => assert_eq!(None, expected),
-                }
-                escaped += escapes as u32;
-                seen += got.is_some() as u32;
-                // Rays whose first emitter along them lies behind something else.
-                let first_emitter = g.emitters.as_ref().and_then(|e| {
-                    e.bvh.closest_hit(&ray, f32::INFINITY, |k, r, t| {
-                        g.prims[e.prims[k as usize] as usize]
-                            .shape
-                            .intersect(r, t)
-                            .map(|h| h.t)
-                    })
-                });
-                blocked += (first_emitter.is_some() && got.is_none()) as u32;
-            }
-            assert!(
-                (seen > 500 || emit_every == 0) && escaped > 500,
-                "{seen} emitter hits, {escaped} escapes"
-            );
-            assert!(
-                !emitters_first || emit_every == 0 || blocked > 100,
-                "{blocked} hidden emitters"
-            );
-        }
-    }
-}
+mod tests;

@@ -28,8 +28,9 @@
 //! for a filter that uses it.
 //!
 //! Where the estimator runs in stages and some light has lanes, a chunk is shaded in
-//! stages instead (see [`super::staged`]); on a tree of one node its camera rays are then
-//! traced one at a time.
+//! stages instead (see [`super::staged`]); on a tree of one node, or in a scene tested
+//! without a tree ([`Geometry::is_flat`](crate::geometry::Geometry::is_flat)), its camera
+//! rays are then traced one at a time.
 
 use std::cell::RefCell;
 use std::ops::Range;
@@ -201,8 +202,10 @@ impl TileSamples for CameraPackets<'_> {
         seed_width: (u64, u32),
         sink: &mut impl FnMut(u32, u32, Vec2, Spectrum),
     ) {
-        // A tree of one node: a packet would save no node tests, only add its set-up.
-        let single_rays = self.scene.geometry.bvh().depth() < MIN_PACKET_DEPTH;
+        // A tree of one node: a packet would save no node tests, only add its set-up;
+        // nor in a scene tested without a tree, where a ray is one pass over the blocks.
+        let geometry = &self.scene.geometry;
+        let single_rays = geometry.bvh().depth() < MIN_PACKET_DEPTH || geometry.is_flat();
         // Lanes come only with an estimate in stages (see `staged::light_lanes`).
         assert!(
             self.lanes.is_none() || self.estimator.stages(),
@@ -232,7 +235,7 @@ impl TileSamples for CameraPackets<'_> {
             return;
         }
         // A chunk's samples with their camera hits, sample index by sample index (one
-        // packet each, or one ray at a time on a tree of one node, where only the staged
+        // packet each, or one ray at a time where `single_rays`, where only the staged
         // shading comes here; none for a culled block, which comes here only in a scene
         // with an environment), the block's pixels within each.
         let mut traced: Vec<(Pending, Option<SurfaceHit>)> =

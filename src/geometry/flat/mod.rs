@@ -1,0 +1,189 @@
+//! Scenes of a few primitives tested without a tree: every shape of the scene in SIMD
+//! blocks of four by kind (triangles as [`Triangle4`], spheres, rectangles and disks as
+//! [`Sphere4`], [`Rect4`], [`Disk4`]), each block one branch-free test of the ray against
+//! its four shapes.
+//!
+//! Where a scene's primitives fill at most [`FLAT_BLOCKS`] blocks (most conformance
+//! scenes, the README's), this is cheaper than walking its BVH: the tree's root already tests four boxes, and a ray through a floor, a wall
+//! and a few spheres then visits most leaves, one shape at a time, with the traversal's
+//! stack and branches on top. On `builtin:assignment` (seven primitives) a camera ray
+//! took about 600 instructions through the tree.
+//!
+//! The answers are the tree's: every lane computes the scalar test's distance bit for
+//! bit, the closest hit is the nearest (the first in block order on an exact tie, where
+//! the tree's visiting order decides instead), and a shadow ray is blocked when some
+//! shape reports a hit, as in the tree's any-hit query.
+
+mod blocks;
+
+use glam::{Vec2, Vec4};
+
+pub use blocks::{Disk4, Hits4, Rect4, Sphere4};
+
+use super::Ray;
+use super::scene_geometry::Primitive;
+use super::shape::{Shape, ShapeHit};
+use super::triangle4::Triangle4;
+
+/// Most blocks a scene's primitives may fill for its queries to skip the BVH: the
+/// tree's root alone tests four boxes, about the cost of one block. With three blocks,
+/// the README's scene (a rectangle block and a sphere block), `cbox_diffuse.xml` and
+/// `envmap_rotated.xml` took 4–8 % fewer instructions and 20–26 % fewer mispredicted
+/// branches; `tent_point.xml` (four blocks: twelve triangles of a cube and a floor) took
+/// 3.5 % more instructions flat than through its tree (BENCHMARKS.md, session 27).
+pub const FLAT_BLOCKS: usize = 3;
+
+/// Most primitives a flat scene can have ([`FLAT_BLOCKS`] full blocks).
+pub const FLAT_MAX: usize = FLAT_BLOCKS * blocks::LANES;
+
+/// A block of four shapes of one kind and the primitive index of each lane.
+#[derive(Clone, Copy, Debug)]
+struct Block<S> {
+    shapes: S,
+    prims: [u32; blocks::LANES],
+}
+
+/// Every primitive of a small scene, in blocks by kind.
+#[derive(Clone, Debug)]
+pub struct FlatShapes {
+    triangles: Vec<Triangle4>,
+    rects: Vec<Block<Rect4>>,
+    spheres: Vec<Block<Sphere4>>,
+    disks: Vec<Block<Disk4>>,
+}
+
+/// `items` (primitive index, shape) in blocks of four made by `block`.
+fn blocks_of<T: Copy, S>(items: &[(u32, T)], block: impl Fn(&[T]) -> S) -> Vec<Block<S>> {
+    items
+        .chunks(blocks::LANES)
+        .map(|chunk| {
+            let shapes: Vec<T> = chunk.iter().map(|&(_, s)| s).collect();
+            Block {
+                shapes: block(&shapes),
+                prims: std::array::from_fn(|l| chunk.get(l).map_or(u32::MAX, |c| c.0)),
+            }
+        })
+        .collect()
+}
+
+/// The closest distance so far and what was hit there.
+type Best = (f32, Option<(u32, ShapeHit)>);
+
+/// The nearest lane of `h` hit below `best` (the lowest lane on a tie), with its hit.
+#[inline(always)]
+fn nearest(h: &Hits4, best: f32) -> Option<(usize, ShapeHit)> {
+    // A hit at a NaN distance is a hit only to an any-hit query (as in the tree).
+    let mask = h.some & h.t.cmplt(Vec4::splat(best));
+    if !mask.any() {
+        return None;
+    }
+    let t = Vec4::select(mask, h.t, Vec4::INFINITY);
+    let m = t.min_element();
+    let lane = (t.cmpeq(Vec4::splat(m)).bitmask() & mask.bitmask()).trailing_zeros() as usize;
+    let uv = Vec2::new(h.u[lane], h.v[lane]);
+    Some((lane, ShapeHit { t: m, uv }))
+}
+
+impl FlatShapes {
+    /// The blocks of `prims` (index into the geometry's primitives, primitive).
+    pub fn new(prims: &[(u32, Primitive)]) -> FlatShapes {
+        let (mut tris, mut rects, mut spheres, mut disks) =
+            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        for &(i, p) in prims {
+            match p.shape {
+                Shape::Triangle(t) => tris.push((i, [t.p0, t.e1, t.e2])),
+                Shape::Rectangle(r) => rects.push((i, r)),
+                Shape::Sphere(s) => spheres.push((i, s)),
+                Shape::Disk(d) => disks.push((i, d)),
+            }
+        }
+        FlatShapes {
+            triangles: tris.chunks(blocks::LANES).map(Triangle4::new).collect(),
+            rects: blocks_of(&rects, Rect4::new),
+            spheres: blocks_of(&spheres, Sphere4::new),
+            disks: blocks_of(&disks, Disk4::new),
+        }
+    }
+
+    /// Number of blocks (of every kind).
+    pub fn block_count(&self) -> usize {
+        self.triangles.len() + self.rects.len() + self.spheres.len() + self.disks.len()
+    }
+
+    /// The closest hit of `ray` in (0, t_max): the primitive's index and the hit. A ray
+    /// that is not finite, or has no direction, hits nothing.
+    #[inline]
+    pub fn closest_hit(&self, ray: &Ray, t_max: f32) -> Option<(u32, ShapeHit)> {
+        if !usable(ray) {
+            return None;
+        }
+        let mut best_t = t_max;
+        let mut best = None;
+        for block in &self.triangles {
+            if let Some(h) = block.closest_hit(ray, best_t) {
+                let uv = Vec2::new(h.hit.b1, h.hit.b2);
+                best_t = h.hit.t;
+                best = Some((block.ids[h.lane], ShapeHit { t: h.hit.t, uv }));
+            }
+        }
+        // Each kind's blocks in turn, keeping the nearest so far.
+        let take = |found: Option<(usize, ShapeHit)>, prims: &[u32; 4], best: &mut Best| {
+            if let Some((lane, hit)) = found {
+                *best = (hit.t, Some((prims[lane], hit)));
+            }
+        };
+        let mut state: Best = (best_t, best);
+        for b in &self.rects {
+            take(
+                nearest(&b.shapes.hits(ray, state.0), state.0),
+                &b.prims,
+                &mut state,
+            );
+        }
+        for b in &self.spheres {
+            take(
+                nearest(&b.shapes.hits(ray, state.0), state.0),
+                &b.prims,
+                &mut state,
+            );
+        }
+        for b in &self.disks {
+            take(
+                nearest(&b.shapes.hits(ray, state.0), state.0),
+                &b.prims,
+                &mut state,
+            );
+        }
+        state.1
+    }
+
+    /// True when something blocks `ray` in (0, t_max). A ray that is not finite, or has
+    /// no direction, is never blocked.
+    #[inline]
+    pub fn any_hit(&self, ray: &Ray, t_max: f32) -> bool {
+        usable(ray)
+            && (self
+                .rects
+                .iter()
+                .any(|b| b.shapes.hits(ray, t_max).some.any())
+                || self
+                    .spheres
+                    .iter()
+                    .any(|b| b.shapes.hits(ray, t_max).some.any())
+                || self.triangles.iter().any(|b| b.any_hit(ray, t_max))
+                || self
+                    .disks
+                    .iter()
+                    .any(|b| b.shapes.hits(ray, t_max).some.any()))
+    }
+}
+
+/// Whether `ray` can hit anything: finite, with a direction (the tree refuses rays that
+/// are not finite; a zero direction would make every sphere lane's distance NaN).
+#[inline(always)]
+fn usable(ray: &Ray) -> bool {
+    ray.o.is_finite() && ray.d.is_finite() && ray.d != glam::Vec3::ZERO
+}
+
+#[cfg(test)]
+mod tests;
