@@ -23,7 +23,8 @@ pub struct Primitive {
     pub light: u32,
 }
 
-/// All primitives of a scene behind a BVH.
+/// All primitives of a scene behind a BVH (or, for a few, in SIMD blocks tested without
+/// it: [`FlatShapes`]).
 #[derive(Clone, Debug)]
 pub struct Geometry {
     prims: Vec<Primitive>,

@@ -6,8 +6,9 @@
 //! Each lane runs the scalar test's operations in the same order ([`Sphere::intersect`],
 //! [`Rectangle::intersect`], [`Disk::intersect`]) with every early `return None` turned
 //! into a lane mask, so a lane's verdict, distance and parameters are the scalar test's
-//! bit for bit (tested in `flat/tests.rs`, NaN rays included). Unused lanes are masked
-//! out.
+//! bit for bit (tested in `flat/tests.rs`; rays that are not finite or have no
+//! direction give the same verdicts, and a NaN distance where the scalar test's is NaN).
+//! Unused lanes are masked out.
 
 use glam::{BVec4A, Vec3, Vec4};
 

@@ -4,15 +4,17 @@
 //! its four shapes.
 //!
 //! Where a scene's primitives fill at most [`FLAT_BLOCKS`] blocks (most conformance
-//! scenes, the README's), this is cheaper than walking its BVH: the tree's root already tests four boxes, and a ray through a floor, a wall
-//! and a few spheres then visits most leaves, one shape at a time, with the traversal's
-//! stack and branches on top. On `builtin:assignment` (seven primitives) a camera ray
-//! took about 600 instructions through the tree.
+//! scenes, the README's), this is cheaper than walking its BVH: the tree's root already
+//! tests four boxes, and a ray through a floor, a wall and a few spheres then visits most
+//! leaves, one shape at a time, with the traversal's stack and branches on top. On
+//! `builtin:assignment` (seven primitives) a camera ray took about 580 instructions in
+//! packets through its tree (680 alone); its two blocks take about 150.
 //!
 //! The answers are the tree's: every lane computes the scalar test's distance bit for
-//! bit, the closest hit is the nearest (the first in block order on an exact tie, where
-//! the tree's visiting order decides instead), and a shadow ray is blocked when some
-//! shape reports a hit, as in the tree's any-hit query.
+//! bit, the closest hit is the nearest (the first in block order on an exact tie, or
+//! between hits within rounding of a box's entry face, where the tree's visiting order
+//! decides instead), and a shadow ray is blocked when some shape reports a hit, as in
+//! the tree's any-hit query.
 
 mod blocks;
 
@@ -28,9 +30,9 @@ use super::triangle4::Triangle4;
 /// Most blocks a scene's primitives may fill for its queries to skip the BVH: the
 /// tree's root alone tests four boxes, about the cost of one block. With three blocks,
 /// the README's scene (a rectangle block and a sphere block), `cbox_diffuse.xml` and
-/// `envmap_rotated.xml` took 4–8 % fewer instructions and 20–26 % fewer mispredicted
-/// branches; `tent_point.xml` (four blocks: twelve triangles of a cube and a floor) took
-/// 3.5 % more instructions flat than through its tree (BENCHMARKS.md, session 27).
+/// `envmap_rotated.xml` took 4–7 % fewer instructions; `tent_point.xml` (four blocks:
+/// twelve triangles of a cube and a floor) took 3.5 % more flat than through its tree
+/// (BENCHMARKS.md, session 27).
 pub const FLAT_BLOCKS: usize = 3;
 
 /// Most primitives a flat scene can have ([`FLAT_BLOCKS`] full blocks).
@@ -158,10 +160,13 @@ impl FlatShapes {
     }
 
     /// True when something blocks `ray` in (0, t_max). A ray that is not finite, or has
-    /// no direction, is never blocked.
+    /// no direction, or an interval that is empty or NaN, is never blocked (the tree
+    /// refuses the first and the last; a ray without direction, which no renderer's
+    /// query makes, may there count as blocked by a sphere around its origin).
     #[inline]
     pub fn any_hit(&self, ray: &Ray, t_max: f32) -> bool {
         usable(ray)
+            && t_max > 0.0
             && (self
                 .rects
                 .iter()
