@@ -13,7 +13,7 @@
 use glam::{BVec4A, Vec3, Vec4};
 
 use crate::geometry::Ray;
-use crate::geometry::shape::{Disk, Rectangle, Sphere};
+use crate::geometry::shape::{Disk, Rectangle, Shape, Sphere};
 
 /// Lanes per block.
 pub const LANES: usize = 4;
@@ -30,6 +30,19 @@ pub struct Hits4 {
     pub u: Vec4,
     /// Second surface parameter.
     pub v: Vec4,
+}
+
+/// A block of up to four analytic shapes of one kind ([`Sphere4`], [`Rect4`],
+/// [`Disk4`]), tested against one ray in every lane at once.
+pub trait ShapeBlock: Sized {
+    /// The scalar shape one lane holds.
+    type Shape: Copy;
+    /// The shape `shape` holds, if it is of this block's kind.
+    fn pick(shape: &Shape) -> Option<Self::Shape>;
+    /// The block of `shapes` (at most four; the other lanes unused).
+    fn new(shapes: &[Self::Shape]) -> Self;
+    /// The scalar test in every lane, in (0, t_max).
+    fn hits(&self, ray: &Ray, t_max: f32) -> Hits4;
 }
 
 /// A vector's three coordinates over four lanes.
@@ -90,9 +103,18 @@ pub struct Sphere4 {
     used: BVec4A,
 }
 
-impl Sphere4 {
+impl ShapeBlock for Sphere4 {
+    type Shape = Sphere;
+
+    fn pick(shape: &Shape) -> Option<Sphere> {
+        match shape {
+            Shape::Sphere(x) => Some(*x),
+            _ => None,
+        }
+    }
+
     /// The block of `spheres` (at most four).
-    pub fn new(spheres: &[Sphere]) -> Sphere4 {
+    fn new(spheres: &[Sphere]) -> Sphere4 {
         assert!(spheres.len() <= LANES);
         let centers: Vec<Vec3> = spheres.iter().map(|s| s.center).collect();
         Sphere4 {
@@ -106,7 +128,7 @@ impl Sphere4 {
 
     /// [`Sphere::intersect`] in every lane, in (0, t_max).
     #[inline(always)]
-    pub fn hits(&self, ray: &Ray, t_max: f32) -> Hits4 {
+    fn hits(&self, ray: &Ray, t_max: f32) -> Hits4 {
         let a = Vec4::splat(ray.d.length_squared());
         let d = ray.d;
         let f = [
@@ -152,9 +174,18 @@ pub struct Rect4 {
     used: BVec4A,
 }
 
-impl Rect4 {
+impl ShapeBlock for Rect4 {
+    type Shape = Rectangle;
+
+    fn pick(shape: &Shape) -> Option<Rectangle> {
+        match shape {
+            Shape::Rectangle(x) => Some(*x),
+            _ => None,
+        }
+    }
+
     /// The block of `rects` (at most four).
-    pub fn new(rects: &[Rectangle]) -> Rect4 {
+    fn new(rects: &[Rectangle]) -> Rect4 {
         assert!(rects.len() <= LANES);
         let field = |f: fn(&Rectangle) -> Vec3, fill: Vec3| {
             soa(&rects.iter().map(f).collect::<Vec<_>>(), fill)
@@ -176,7 +207,7 @@ impl Rect4 {
 
     /// [`Rectangle::intersect`] in every lane, in (0, t_max); both sides count.
     #[inline(always)]
-    pub fn hits(&self, ray: &Ray, t_max: f32) -> Hits4 {
+    fn hits(&self, ray: &Ray, t_max: f32) -> Hits4 {
         let (denom, t, q) = plane(&self.o, &self.normal, ray);
         // ray.at(t) − o, dotted with each edge over the edge's squared length.
         let u = dot4(&q, &self.ea) / self.la;
@@ -203,9 +234,18 @@ pub struct Disk4 {
     used: BVec4A,
 }
 
-impl Disk4 {
+impl ShapeBlock for Disk4 {
+    type Shape = Disk;
+
+    fn pick(shape: &Shape) -> Option<Disk> {
+        match shape {
+            Shape::Disk(x) => Some(*x),
+            _ => None,
+        }
+    }
+
     /// The block of `disks` (at most four).
-    pub fn new(disks: &[Disk]) -> Disk4 {
+    fn new(disks: &[Disk]) -> Disk4 {
         assert!(disks.len() <= LANES);
         let nan = Vec3::splat(f32::NAN);
         Disk4 {
@@ -220,7 +260,7 @@ impl Disk4 {
 
     /// [`Disk::intersect`] in every lane, in (0, t_max); both sides count.
     #[inline(always)]
-    pub fn hits(&self, ray: &Ray, t_max: f32) -> Hits4 {
+    fn hits(&self, ray: &Ray, t_max: f32) -> Hits4 {
         let (denom, t, q) = plane(&self.center, &self.normal, ray);
         let some = self.used
             & denom.cmpne(Vec4::ZERO)

@@ -20,7 +20,7 @@ mod blocks;
 
 use glam::{Vec2, Vec4};
 
-pub use blocks::{Disk4, Hits4, Rect4, Sphere4};
+pub use blocks::{Disk4, Hits4, Rect4, ShapeBlock, Sphere4};
 
 use super::Ray;
 use super::scene_geometry::Primitive;
@@ -54,14 +54,18 @@ pub struct FlatShapes {
     disks: Vec<Block<Disk4>>,
 }
 
-/// `items` (primitive index, shape) in blocks of four made by `block`.
-fn blocks_of<T: Copy, S>(items: &[(u32, T)], block: impl Fn(&[T]) -> S) -> Vec<Block<S>> {
+/// The shapes of kind `S` among `prims` (index, primitive), in blocks of four.
+fn blocks_of<S: ShapeBlock>(prims: &[(u32, Primitive)]) -> Vec<Block<S>> {
+    let items: Vec<(u32, S::Shape)> = prims
+        .iter()
+        .filter_map(|(i, p)| Some((*i, S::pick(&p.shape)?)))
+        .collect();
     items
         .chunks(blocks::LANES)
         .map(|chunk| {
-            let shapes: Vec<T> = chunk.iter().map(|&(_, s)| s).collect();
+            let shapes: Vec<S::Shape> = chunk.iter().map(|&(_, s)| s).collect();
             Block {
-                shapes: block(&shapes),
+                shapes: S::new(&shapes),
                 prims: std::array::from_fn(|l| chunk.get(l).map_or(u32::MAX, |c| c.0)),
             }
         })
@@ -70,6 +74,22 @@ fn blocks_of<T: Copy, S>(items: &[(u32, T)], block: impl Fn(&[T]) -> S) -> Vec<B
 
 /// The closest distance so far and what was hit there.
 type Best = (f32, Option<(u32, ShapeHit)>);
+
+/// `best`, brought nearer by the closest hit of `ray` among `blocks`.
+#[inline(always)]
+fn closest_in<S: ShapeBlock>(blocks: &[Block<S>], ray: &Ray, best: &mut Best) {
+    for b in blocks {
+        if let Some((lane, hit)) = nearest(&b.shapes.hits(ray, best.0), best.0) {
+            *best = (hit.t, Some((b.prims[lane], hit)));
+        }
+    }
+}
+
+/// Whether some shape of `blocks` blocks `ray` in (0, t_max).
+#[inline(always)]
+fn any_in<S: ShapeBlock>(blocks: &[Block<S>], ray: &Ray, t_max: f32) -> bool {
+    blocks.iter().any(|b| b.shapes.hits(ray, t_max).some.any())
+}
 
 /// The nearest lane of `h` hit below `best` (the lowest lane on a tie), with its hit.
 #[inline(always)]
@@ -89,21 +109,18 @@ fn nearest(h: &Hits4, best: f32) -> Option<(usize, ShapeHit)> {
 impl FlatShapes {
     /// The blocks of `prims` (index into the geometry's primitives, primitive).
     pub fn new(prims: &[(u32, Primitive)]) -> FlatShapes {
-        let (mut tris, mut rects, mut spheres, mut disks) =
-            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-        for &(i, p) in prims {
-            match p.shape {
-                Shape::Triangle(t) => tris.push((i, [t.p0, t.e1, t.e2])),
-                Shape::Rectangle(r) => rects.push((i, r)),
-                Shape::Sphere(s) => spheres.push((i, s)),
-                Shape::Disk(d) => disks.push((i, d)),
-            }
-        }
+        let tris: Vec<(u32, [glam::Vec3; 3])> = prims
+            .iter()
+            .filter_map(|&(i, p)| match p.shape {
+                Shape::Triangle(t) => Some((i, [t.p0, t.e1, t.e2])),
+                _ => None,
+            })
+            .collect();
         FlatShapes {
             triangles: tris.chunks(blocks::LANES).map(Triangle4::new).collect(),
-            rects: blocks_of(&rects, Rect4::new),
-            spheres: blocks_of(&spheres, Sphere4::new),
-            disks: blocks_of(&disks, Disk4::new),
+            rects: blocks_of(prims),
+            spheres: blocks_of(prims),
+            disks: blocks_of(prims),
         }
     }
 
@@ -119,44 +136,21 @@ impl FlatShapes {
         if !usable(ray) {
             return None;
         }
-        let mut best_t = t_max;
-        let mut best = None;
-        for block in &self.triangles {
-            if let Some(h) = block.closest_hit(ray, best_t) {
-                let uv = Vec2::new(h.hit.b1, h.hit.b2);
-                best_t = h.hit.t;
-                best = Some((block.ids[h.lane], ShapeHit { t: h.hit.t, uv }));
-            }
-        }
         // Each kind's blocks in turn, keeping the nearest so far.
-        let take = |found: Option<(usize, ShapeHit)>, prims: &[u32; 4], best: &mut Best| {
-            if let Some((lane, hit)) = found {
-                *best = (hit.t, Some((prims[lane], hit)));
+        let mut best: Best = (t_max, None);
+        for block in &self.triangles {
+            if let Some(h) = block.closest_hit(ray, best.0) {
+                let uv = Vec2::new(h.hit.b1, h.hit.b2);
+                best = (
+                    h.hit.t,
+                    Some((block.ids[h.lane], ShapeHit { t: h.hit.t, uv })),
+                );
             }
-        };
-        let mut state: Best = (best_t, best);
-        for b in &self.rects {
-            take(
-                nearest(&b.shapes.hits(ray, state.0), state.0),
-                &b.prims,
-                &mut state,
-            );
         }
-        for b in &self.spheres {
-            take(
-                nearest(&b.shapes.hits(ray, state.0), state.0),
-                &b.prims,
-                &mut state,
-            );
-        }
-        for b in &self.disks {
-            take(
-                nearest(&b.shapes.hits(ray, state.0), state.0),
-                &b.prims,
-                &mut state,
-            );
-        }
-        state.1
+        closest_in(&self.rects, ray, &mut best);
+        closest_in(&self.spheres, ray, &mut best);
+        closest_in(&self.disks, ray, &mut best);
+        best.1
     }
 
     /// True when something blocks `ray` in (0, t_max). A ray that is not finite, or has
@@ -167,19 +161,10 @@ impl FlatShapes {
     pub fn any_hit(&self, ray: &Ray, t_max: f32) -> bool {
         usable(ray)
             && t_max > 0.0
-            && (self
-                .rects
-                .iter()
-                .any(|b| b.shapes.hits(ray, t_max).some.any())
-                || self
-                    .spheres
-                    .iter()
-                    .any(|b| b.shapes.hits(ray, t_max).some.any())
+            && (any_in(&self.rects, ray, t_max)
+                || any_in(&self.spheres, ray, t_max)
                 || self.triangles.iter().any(|b| b.any_hit(ray, t_max))
-                || self
-                    .disks
-                    .iter()
-                    .any(|b| b.shapes.hits(ray, t_max).some.any()))
+                || any_in(&self.disks, ray, t_max))
     }
 }
 

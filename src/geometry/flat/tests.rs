@@ -67,44 +67,18 @@ fn scalar(shape: &Shape, ray: &Ray, t_max: f32) -> (bool, u32, [u32; 2]) {
     }
 }
 
-/// The shapes of `pick` among `shapes`.
-fn picked<T>(shapes: &[Shape], pick: impl Fn(&Shape) -> Option<T>) -> Vec<T> {
-    shapes.iter().filter_map(pick).collect()
+/// The block of kind `S` made of `shapes`' shapes of that kind, against `ray`.
+fn hits_of<S: ShapeBlock>(shapes: &[Shape], ray: &Ray, t_max: f32) -> Hits4 {
+    let picked: Vec<S::Shape> = shapes.iter().filter_map(S::pick).collect();
+    S::new(&picked).hits(ray, t_max)
 }
 
 /// The block of `shapes` (one to four of one analytic kind) against `ray`.
 fn block_hits(shapes: &[Shape], ray: &Ray, t_max: f32) -> Hits4 {
     match shapes[0] {
-        Shape::Sphere(_) => {
-            let spheres = picked(shapes, |s| {
-                if let Shape::Sphere(x) = s {
-                    Some(*x)
-                } else {
-                    None
-                }
-            });
-            Sphere4::new(&spheres).hits(ray, t_max)
-        }
-        Shape::Rectangle(_) => {
-            let rects = picked(shapes, |s| {
-                if let Shape::Rectangle(x) = s {
-                    Some(*x)
-                } else {
-                    None
-                }
-            });
-            Rect4::new(&rects).hits(ray, t_max)
-        }
-        _ => {
-            let disks = picked(shapes, |s| {
-                if let Shape::Disk(x) = s {
-                    Some(*x)
-                } else {
-                    None
-                }
-            });
-            Disk4::new(&disks).hits(ray, t_max)
-        }
+        Shape::Sphere(_) => hits_of::<Sphere4>(shapes, ray, t_max),
+        Shape::Rectangle(_) => hits_of::<Rect4>(shapes, ray, t_max),
+        _ => hits_of::<Disk4>(shapes, ray, t_max),
     }
 }
 
