@@ -50,12 +50,41 @@ impl Texture {
         }) as usize
     }
 
+    /// [`Texture::wrap_index`] of `i` and of `i + 1`, with one division instead of two
+    /// (the bilinear lookup's two neighbouring texels along an axis). `i + 1` is taken
+    /// without overflow: at `i64::MAX` (a coordinate past 2⁶³ texels, where the lookup's
+    /// weight on it is 0) it is the texel that follows.
+    #[inline]
+    fn wrap_pair(&self, i: i64, n: u32) -> (usize, usize) {
+        let n = n as i64;
+        let (a, b) = match self.wrap {
+            Wrap::Repeat => {
+                let a = i.rem_euclid(n);
+                (a, if a + 1 == n { 0 } else { a + 1 })
+            }
+            Wrap::Clamp => (i.clamp(0, n - 1), i.saturating_add(1).clamp(0, n - 1)),
+            Wrap::Mirror => {
+                let m = i.rem_euclid(2 * n);
+                let m1 = if m + 1 == 2 * n { 0 } else { m + 1 };
+                let fold = |m: i64| if m < n { m } else { 2 * n - 1 - m };
+                (fold(m), fold(m1))
+            }
+        };
+        (a as usize, b as usize)
+    }
+
     #[inline]
     fn texel(&self, x: i64, y: i64) -> Spectrum {
         let (x, y) = (
             self.wrap_index(x, self.width),
             self.wrap_index(y, self.height),
         );
+        self.at(x, y)
+    }
+
+    /// The texel in column `x`, row `y` (both in range).
+    #[inline]
+    fn at(&self, x: usize, y: usize) -> Spectrum {
         self.texels[y * self.width as usize + x]
     }
 
@@ -73,9 +102,10 @@ impl Texture {
         let q = p - 0.5;
         let (x0, y0) = (super::floor(q.x), super::floor(q.y));
         let (fx, fy) = (q.x - x0, q.y - y0);
-        let (x0, y0) = (x0 as i64, y0 as i64);
-        let top = self.texel(x0, y0) * (1.0 - fx) + self.texel(x0 + 1, y0) * fx;
-        let bottom = self.texel(x0, y0 + 1) * (1.0 - fx) + self.texel(x0 + 1, y0 + 1) * fx;
+        let (x0, x1) = self.wrap_pair(x0 as i64, self.width);
+        let (y0, y1) = self.wrap_pair(y0 as i64, self.height);
+        let top = self.at(x0, y0) * (1.0 - fx) + self.at(x1, y0) * fx;
+        let bottom = self.at(x0, y1) * (1.0 - fx) + self.at(x1, y1) * fx;
         top * (1.0 - fy) + bottom * fy
     }
 }
@@ -92,6 +122,38 @@ mod tests {
             bilinear,
             wrap,
             to_uv: Affine2::IDENTITY,
+        }
+    }
+
+    #[test]
+    fn wrap_pair_is_wrap_index_of_both_neighbours() {
+        for wrap in [Wrap::Repeat, Wrap::Mirror, Wrap::Clamp] {
+            let t = checker(wrap, true);
+            for n in [1u32, 2, 3, 7, 8] {
+                for i in -40i64..40 {
+                    let expect = (t.wrap_index(i, n), t.wrap_index(i + 1, n));
+                    assert_eq!(t.wrap_pair(i, n), expect, "{wrap:?} n {n} i {i}");
+                }
+            }
+            for i in [i64::MIN, i64::MIN + 1, i64::MAX - 1] {
+                assert_eq!(
+                    t.wrap_pair(i, 5),
+                    (t.wrap_index(i, 5), t.wrap_index(i + 1, 5))
+                );
+            }
+            // At i64::MAX the neighbour is the next texel along, as for any other i.
+            let (a, b) = t.wrap_pair(i64::MAX, 5);
+            assert_eq!(a, t.wrap_index(i64::MAX, 5));
+            let next = match wrap {
+                Wrap::Repeat => (a + 1) % 5,
+                Wrap::Mirror => (i64::MAX as i128 + 1).rem_euclid(10) as usize,
+                Wrap::Clamp => 4,
+            };
+            let next = match wrap {
+                Wrap::Mirror if next >= 5 => 9 - next,
+                _ => next,
+            };
+            assert_eq!(b, next, "{wrap:?} at i64::MAX");
         }
     }
 

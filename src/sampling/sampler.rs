@@ -7,8 +7,14 @@
 
 use glam::Vec2;
 
+mod strata;
+
 use super::rng::{HASH_START, Rng32, hash_more, hash_words, mix64};
-use super::sobol::{SobolSeed, sobol_1d_seeded, sobol_2d_seeded};
+use super::sobol::{
+    CHUNK_LANES, SobolSeed, chunk_is_wide, sobol_1d_seeded, sobol_2d_chunk, sobol_2d_seeded,
+};
+use strata::EqualAreaRows;
+pub use strata::{equal_area_cell, permute};
 
 /// A source of uniform numbers in [0, 1). Rejection samplers draw from one of these.
 pub trait Uniform {
@@ -36,17 +42,19 @@ pub use crate::settings::SamplerKind;
 /// later samples fall back to independent numbers.
 pub const SOBOL_MAX_SAMPLES: u32 = 1 << 16;
 
-/// Dimensions whose Sobol seeds a [`PixelStreams`] hashes once per pixel: the first four,
-/// which the default estimate draws (film position, light choice, light point, BSDF
-/// direction). Later dimensions are hashed per sample.
+/// Dimensions whose Sobol seeds a [`PixelStreams`] hashes once per pixel, and whose
+/// points the camera packets draw for a chunk of samples at once
+/// ([`PixelStreams::chunk_ahead`]): the first four, which the default estimate draws
+/// (film position, light choice, light point, BSDF direction). Later dimensions are
+/// hashed and drawn per sample.
 pub const SEEDED_DIMENSIONS: usize = 4;
 
 /// The part of a pixel's sampler streams that every sample of the pixel shares: its key;
 /// for `sobol`, the hashed seeds of its first [`SEEDED_DIMENSIONS`] dimensions (each
 /// dimension's seed depends on the pixel alone, Burley 2020 §4, so its three hashes need
 /// not be redone for every sample); for `stratified`, the strata's layout for the
-/// render's sample count. [`Sampler::for_streams`] draws the same numbers as
-/// [`Sampler::for_pixel`] with the same key.
+/// render's sample count. [`Sampler::for_streams`], and [`Sampler::with_ahead`] with its
+/// chunk's points, draw the same numbers as [`Sampler::for_pixel`] with the same key.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct PixelStreams {
     key: u64,
@@ -58,6 +66,10 @@ pub struct PixelStreams {
     /// The strata of `spp` samples (`stratified`; `n` = 0, no layout, otherwise).
     rows: EqualAreaRows,
 }
+
+/// The Sobol points of a sample's first [`SEEDED_DIMENSIONS`] dimensions, which its
+/// chunk drew together ([`PixelStreams::chunk_ahead`]).
+pub type Ahead = [Vec2; SEEDED_DIMENSIONS];
 
 impl PixelStreams {
     /// The streams of pixel `pixel` (a linear index) under `seed` for a sampler of `kind`
@@ -94,6 +106,29 @@ impl PixelStreams {
         }
     }
 
+    /// The Sobol points of the first [`SEEDED_DIMENSIONS`] dimensions of samples
+    /// `first`, `first` + 1, … (`len` ≤ [`CHUNK_LANES`] of them), for
+    /// [`Sampler::with_ahead`]: computed together ([`sobol_2d_chunk`]) where that pays
+    /// (a whole chunk, or two samples and more where the lanes are AVX2's), else sample
+    /// by sample from the pixel's seeds. `None` unless the streams are Sobol's and the
+    /// first sample has Sobol points (past [`SOBOL_MAX_SAMPLES`] samples fall back to
+    /// independent numbers).
+    #[inline]
+    pub fn chunk_ahead(&self, first: u32, len: usize) -> Option<[Ahead; CHUNK_LANES]> {
+        if self.seeded != SEEDED_DIMENSIONS as u32 || first >= SOBOL_MAX_SAMPLES {
+            return None;
+        }
+        if len >= CHUNK_LANES || (len >= 2 && chunk_is_wide()) {
+            return Some(sobol_2d_chunk(first, &self.sobol));
+        }
+        let mut ahead = [Ahead::default(); CHUNK_LANES];
+        for (l, points) in ahead.iter_mut().enumerate().take(len) {
+            let index_rev = first.wrapping_add(l as u32).reverse_bits();
+            *points = std::array::from_fn(|d| sobol_2d_seeded(index_rev, &self.sobol[d]));
+        }
+        Some(ahead)
+    }
+
     /// The pixel's key ([`Sampler::pixel_key`]).
     #[inline]
     pub fn key(&self) -> u64 {
@@ -124,9 +159,11 @@ pub struct Sampler {
     /// The 2D stratification of `spp` cells and the permutation's mask (stratified
     /// sampler only).
     rows: EqualAreaRows,
-    /// The hashed Sobol seeds of the first `seeded` dimensions (see [`PixelStreams`]).
-    seeded: u32,
-    sobol: [SobolSeed; SEEDED_DIMENSIONS],
+    /// The Sobol points of the first `pointed` dimensions, drawn ahead with the rest of
+    /// their chunk ([`PixelStreams::chunk_ahead`]); `pointed` is 0 unless
+    /// [`Sampler::with_ahead`] made a Sobol sampler.
+    pointed: u32,
+    points: [Vec2; SEEDED_DIMENSIONS],
 }
 
 impl Sampler {
@@ -150,13 +187,39 @@ impl Sampler {
     }
 
     /// [`Sampler::for_pixel`] for the pixel whose streams are `streams` (made for the
-    /// same `kind`), with its seeds hashed already.
+    /// same `kind`). Every Sobol dimension is hashed as it is drawn (three hashes each):
+    /// a hot path takes [`Sampler::with_ahead`], which uses the pixel's seeds.
     #[inline]
     pub fn for_streams(
         kind: SamplerKind,
         streams: &PixelStreams,
         sample_index: u32,
         spp: u32,
+    ) -> Sampler {
+        Self::build(kind, streams, sample_index, spp, None)
+    }
+
+    /// [`Sampler::for_streams`] with what its first [`SEEDED_DIMENSIONS`] dimensions
+    /// draw given: `ahead`, this sample's lane of its chunk's
+    /// [`PixelStreams::chunk_ahead`] (the same numbers, computed together).
+    #[inline]
+    pub fn with_ahead(
+        kind: SamplerKind,
+        streams: &PixelStreams,
+        sample_index: u32,
+        spp: u32,
+        ahead: &Ahead,
+    ) -> Sampler {
+        Self::build(kind, streams, sample_index, spp, Some(ahead))
+    }
+
+    #[inline(always)]
+    fn build(
+        kind: SamplerKind,
+        streams: &PixelStreams,
+        sample_index: u32,
+        spp: u32,
+        ahead: Option<&Ahead>,
     ) -> Sampler {
         let pixel_key = streams.key;
         let kind = match kind {
@@ -189,12 +252,13 @@ impl Sampler {
                 // hash_words(&[pixel_key, sample_index]), the key folded in already.
                 Rng32::new(hash_more(streams.sample_hash, sample_index as u64))
             },
-            seeded: if kind == SamplerKind::Sobol {
-                streams.seeded
-            } else {
-                0
+            // Sobol's first dimensions from the chunk's points, where given (otherwise
+            // every dimension is hashed as it is drawn).
+            pointed: match ahead {
+                Some(_) if kind == SamplerKind::Sobol => streams.seeded,
+                _ => 0,
             },
-            sobol: streams.sobol,
+            points: ahead.copied().unwrap_or_default(),
         }
     }
 
@@ -210,58 +274,78 @@ impl Sampler {
         key
     }
 
-    /// The hashed Sobol seed of the next dimension: from the pixel's streams where they
-    /// hold it, else hashed here.
-    #[inline(always)]
-    fn sobol_seed(&mut self) -> SobolSeed {
-        let d = self.dimension;
-        if d < self.seeded {
-            self.dimension += 1;
-            self.sobol[d as usize]
-        } else {
-            SobolSeed::new(self.dimension_key() as u32)
-        }
-    }
-
     /// The jittered stratum of this sample in a 1D or 2D pattern of `spp` cells.
-    fn stratified_cell(&mut self) -> (u32, u64) {
+    fn stratified_cell(&mut self) -> u32 {
         let key = self.dimension_key();
-        (self.rows.permute(self.sample_index, key as u32), key)
+        self.rows.permute(self.sample_index, key as u32)
     }
 }
 
 impl Uniform for Sampler {
-    #[inline]
+    #[inline(always)]
     fn next_1d(&mut self) -> f32 {
+        // A pair drawn ahead gives its first number (`sobol_1d` is the pair's x).
+        match self.ahead() {
+            Some(p) => p.x,
+            None => self.draw_1d(),
+        }
+    }
+
+    #[inline(always)]
+    fn next_2d(&mut self) -> Vec2 {
+        match self.ahead() {
+            Some(p) => p,
+            None => self.draw_2d(),
+        }
+    }
+}
+
+impl Sampler {
+    /// The next dimension's Sobol point, where it was drawn ahead: a few instructions
+    /// inlined where it is drawn, where a call and a match on the kind cost more
+    /// (README render: 2 % of all instructions).
+    #[inline(always)]
+    fn ahead(&mut self) -> Option<Vec2> {
+        const _: () = assert!(SEEDED_DIMENSIONS.is_power_of_two());
+        let d = self.dimension;
+        (d < self.pointed).then(|| {
+            self.dimension = d + 1;
+            // d < pointed ≤ SEEDED_DIMENSIONS: the mask only spares a bounds check.
+            self.points[d as usize & (SEEDED_DIMENSIONS - 1)]
+        })
+    }
+
+    #[inline]
+    fn draw_1d(&mut self) -> f32 {
         match self.kind {
             SamplerKind::Independent => self.rng.next_f32(),
             SamplerKind::Stratified => {
-                let (cell, _) = self.stratified_cell();
+                let cell = self.stratified_cell();
                 let jitter = self.rng.next_f32();
                 ((cell as f32 + jitter) / self.spp as f32).min(ONE_MINUS_EPSILON)
             }
             SamplerKind::Sobol => {
                 // Padding by reseeding (Burley 2020 §4): dimension 0 of a fresh
                 // shuffled, scrambled sequence for every 1D request.
-                let seed = self.sobol_seed();
+                let seed = SobolSeed::new(self.dimension_key() as u32);
                 sobol_1d_seeded(self.index_rev, &seed)
             }
         }
     }
 
     #[inline]
-    fn next_2d(&mut self) -> Vec2 {
+    fn draw_2d(&mut self) -> Vec2 {
         match self.kind {
             SamplerKind::Independent => Vec2::new(self.rng.next_f32(), self.rng.next_f32()),
             SamplerKind::Stratified => {
-                let (cell, _) = self.stratified_cell();
+                let cell = self.stratified_cell();
                 let jitter = Vec2::new(self.rng.next_f32(), self.rng.next_f32());
                 self.rows.cell(cell, jitter)
             }
             SamplerKind::Sobol => {
                 // Dimensions 0 and 1 of Sobol form a (0,2)-sequence: every 2D request
                 // uses that pair under its own seed.
-                let seed = self.sobol_seed();
+                let seed = SobolSeed::new(self.dimension_key() as u32);
                 sobol_2d_seeded(self.index_rev, &seed)
             }
         }
@@ -270,139 +354,6 @@ impl Uniform for Sampler {
 
 /// The largest `f32` below one.
 pub const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
-
-/// A point jittered inside cell `cell` of `n` equal-area cells that tile the unit square:
-/// ⌊√n⌋ rows, each cut into as many cells as its share of `n`, with row heights
-/// proportional to their cell counts so that every cell has area 1/n. For square `n`
-/// this is the usual jittered grid.
-pub fn equal_area_cell(cell: u32, n: u32, jitter: Vec2) -> Vec2 {
-    EqualAreaRows::new(n).cell(cell, jitter)
-}
-
-/// The strata of `n` samples: the row layout of [`equal_area_cell`] (a square root and
-/// two integer divisions) and [`permute`]'s bit mask, computed once per pixel
-/// ([`PixelStreams`]) rather than once per sample and per dimension.
-#[derive(Clone, Copy, Debug, Default)]
-struct EqualAreaRows {
-    n: u32,
-    base: u32,
-    extra: u32,
-    /// [`permutation_mask`] of `n`.
-    mask: u32,
-}
-
-impl EqualAreaRows {
-    /// A placeholder for samplers that do not stratify.
-    const UNUSED: EqualAreaRows = EqualAreaRows {
-        n: 1,
-        base: 1,
-        extra: 0,
-        mask: 0,
-    };
-
-    fn new(n: u32) -> EqualAreaRows {
-        let rows = (n as f32).sqrt() as u32;
-        let rows = rows.clamp(1, n.max(1));
-        EqualAreaRows {
-            n,
-            base: n / rows,
-            extra: n % rows,
-            mask: permutation_mask(n),
-        }
-    }
-
-    /// [`equal_area_cell`] of `cell` in this layout.
-    #[inline]
-    fn cell(&self, cell: u32, jitter: Vec2) -> Vec2 {
-        let EqualAreaRows { n, base, extra, .. } = *self;
-        equal_area_cell_in(cell, n, base, extra, jitter)
-    }
-
-    /// [`permute`] of `i` among the `n` samples under `seed`.
-    #[inline]
-    fn permute(&self, i: u32, seed: u32) -> u32 {
-        permute_masked(i, self.n, self.mask, seed)
-    }
-}
-
-/// [`equal_area_cell`] with the layout given: `base` cells per row, the first `extra`
-/// rows one more.
-#[inline]
-fn equal_area_cell_in(cell: u32, n: u32, base: u32, extra: u32, jitter: Vec2) -> Vec2 {
-    // Rows 0..extra hold base + 1 cells, the rest hold base.
-    let (row, col, before) = if cell < extra * (base + 1) {
-        let r = cell / (base + 1);
-        (r, cell % (base + 1), r * (base + 1))
-    } else {
-        let c = cell - extra * (base + 1);
-        let r = extra + c / base;
-        (r, c % base, extra * (base + 1) + (r - extra) * base)
-    };
-    let cells_in_row = if row < extra { base + 1 } else { base };
-    let y0 = before as f32 / n as f32;
-    let height = cells_in_row as f32 / n as f32;
-    Vec2::new(
-        ((col as f32 + jitter.x) / cells_in_row as f32).min(ONE_MINUS_EPSILON),
-        (y0 + jitter.y * height).min(ONE_MINUS_EPSILON),
-    )
-}
-
-/// A pseudo-random permutation of 0..n evaluated at `i` (Kensler 2013, "Correlated
-/// Multi-Jittered Sampling", Pixar TM 13-01): a hashed bijection on the next power of
-/// two, cycle-walked back into range.
-pub fn permute(i: u32, n: u32, seed: u32) -> u32 {
-    permute_masked(i, n, permutation_mask(n), seed)
-}
-
-/// [`permute`]'s bit mask for `n` samples: n − 1's highest bit and every bit below it
-/// (0 for n ≤ 1).
-fn permutation_mask(n: u32) -> u32 {
-    match n.saturating_sub(1) {
-        0 => 0,
-        m => u32::MAX >> m.leading_zeros(),
-    }
-}
-
-/// [`permute`] with its mask `w` (n − 1's highest bit and the bits below) given.
-#[inline]
-fn permute_masked(mut i: u32, n: u32, w: u32, seed: u32) -> u32 {
-    if n <= 1 {
-        return 0;
-    }
-    loop {
-        i = kensler_hash(i, w, seed);
-        if i < n {
-            break;
-        }
-    }
-    let i = i.wrapping_add(seed);
-    // n a power of two (the usual sample counts): the remainder is the low bits.
-    if n & w == 0 { i & w } else { i % n }
-}
-
-/// One round of Kensler's hash: a bijection on the integers below the power of two
-/// `w` + 1, keyed by `seed` ([`permute`] walks it until the value falls below n).
-#[inline(always)]
-fn kensler_hash(mut i: u32, w: u32, seed: u32) -> u32 {
-    i ^= seed;
-    i = i.wrapping_mul(0xe170_893d);
-    i ^= seed >> 16;
-    i ^= (i & w) >> 4;
-    i ^= seed >> 8;
-    i = i.wrapping_mul(0x0929_eb3f);
-    i ^= seed >> 23;
-    i ^= (i & w) >> 1;
-    i = i.wrapping_mul(1 | seed >> 27);
-    i = i.wrapping_mul(0x6935_fa69);
-    i ^= (i & w) >> 11;
-    i = i.wrapping_mul(0x74dc_b303);
-    i ^= (i & w) >> 2;
-    i = i.wrapping_mul(0x9e50_1cc3);
-    i ^= (i & w) >> 2;
-    i = i.wrapping_mul(0xc860_a3df);
-    i &= w;
-    i ^ (i >> 5)
-}
 
 #[cfg(test)]
 mod tests;

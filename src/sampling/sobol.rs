@@ -134,9 +134,174 @@ pub fn sobol_2d_seeded(index_rev: u32, seed: &SobolSeed) -> Vec2 {
     )
 }
 
+/// Samples per call of [`sobol_2d_chunk`]: a chunk of a pixel's consecutive samples
+/// (the camera packets' `CHUNK`).
+pub const CHUNK_LANES: usize = 8;
+
+/// [`sobol_2d_seeded`] of samples `first`, `first` + 1, … (the [`CHUNK_LANES`]
+/// consecutive sample indices of one pixel) under each of `seeds` (one per dimension):
+/// `points[lane][dimension]`, bit for bit the point-by-point values. Each step runs over
+/// the lanes at once, the integer hashes and bit reversals as vector instructions where
+/// the processor has AVX2 (detected at run time), else for the target's baseline. One
+/// 2D point by itself is a chain of about 70 dependent integer steps (the 64-bit
+/// reversal alone is a dozen on x86-64, which has no instruction for it); eight side by
+/// side share those steps. Indices at or past 2¹⁶ give values no sampler uses.
+#[inline]
+pub fn sobol_2d_chunk<const D: usize>(
+    first: u32,
+    seeds: &[SobolSeed; D],
+) -> [[Vec2; D]; CHUNK_LANES] {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: the processor has AVX2, checked just above.
+        return unsafe { chunk_avx2(first, seeds) };
+    }
+    chunk_lanes(first, seeds)
+}
+
+/// Whether [`sobol_2d_chunk`] runs in AVX2 lanes on this processor (where it does not,
+/// its lanes cost what as many single points cost).
+#[inline]
+pub fn chunk_is_wide() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    return std::arch::is_x86_feature_detected!("avx2");
+    #[cfg(not(target_arch = "x86_64"))]
+    false
+}
+
+/// [`chunk_lanes`] in AVX2 registers of eight u32 lanes: the hashes as vector
+/// multiplies, the table reads as gathers, each 32-bit reversal as two nibble-table
+/// shuffles and a byte swap.
+///
+/// # Safety
+///
+/// The processor must have AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn chunk_avx2<const D: usize>(
+    first: u32,
+    seeds: &[SobolSeed; D],
+) -> [[Vec2; D]; CHUNK_LANES] {
+    use std::arch::x86_64::*;
+    let t = tables();
+    let splat = |v: u32| _mm256_set1_epi32(v as i32);
+    // sobol_burley's owen_scramble_rev, lane by lane.
+    let owen = |n: __m256i, scramble: u32| {
+        let n = _mm256_xor_si256(n, _mm256_mullo_epi32(n, splat(0x3d20_adea)));
+        let n = _mm256_add_epi32(n, splat(scramble));
+        let n = _mm256_mullo_epi32(n, splat((scramble >> 16) | 1));
+        let n = _mm256_xor_si256(n, _mm256_mullo_epi32(n, splat(0x0552_6c56)));
+        _mm256_xor_si256(n, _mm256_mullo_epi32(n, splat(0x53a2_2864)))
+    };
+    // The four bits of a nibble reversed, placed low (`low`) or high (`high`).
+    let low = _mm256_setr_epi8(
+        0, 8, 4, 12, 2, 10, 6, 14, 1, 9, 5, 13, 3, 11, 7, 15, //
+        0, 8, 4, 12, 2, 10, 6, 14, 1, 9, 5, 13, 3, 11, 7, 15,
+    );
+    let high = _mm256_slli_epi16::<4>(low);
+    let swap = _mm256_setr_epi8(
+        3, 2, 1, 0, 7, 6, 5, 4, 11, 10, 9, 8, 15, 14, 13, 12, //
+        3, 2, 1, 0, 7, 6, 5, 4, 11, 10, 9, 8, 15, 14, 13, 12,
+    );
+    let reverse = |n: __m256i| {
+        let nib = splat(0x0f0f_0f0f);
+        let lo = _mm256_and_si256(n, nib);
+        let hi = _mm256_and_si256(_mm256_srli_epi32::<4>(n), nib);
+        let bytes = _mm256_or_si256(_mm256_shuffle_epi8(high, lo), _mm256_shuffle_epi8(low, hi));
+        _mm256_shuffle_epi8(bytes, swap)
+    };
+    // u32_to_f32_norm: the top 23 bits as the mantissa of a number in [1, 2), minus 1.
+    let unit = |n: __m256i| {
+        let bits = _mm256_or_si256(_mm256_srli_epi32::<9>(n), splat(0x3f80_0000));
+        _mm256_sub_ps(_mm256_castsi256_ps(bits), _mm256_set1_ps(1.0))
+    };
+    let index = _mm256_add_epi32(splat(first), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+    let rev = reverse(index);
+    let mut points = [[Vec2::ZERO; D]; CHUNK_LANES];
+    for (d, seed) in seeds.iter().enumerate() {
+        let shuffled = owen(rev, seed.shuffle);
+        let hi = _mm256_srli_epi32::<24>(shuffled);
+        let lo = _mm256_and_si256(_mm256_srli_epi32::<16>(shuffled), splat(0xff));
+        let axis = |k: usize| {
+            // SAFETY: every index is a byte (0..256), within the 256-entry tables.
+            let (h, l) = unsafe {
+                (
+                    _mm256_i32gather_epi32::<4>(t.high[k].as_ptr().cast(), hi),
+                    _mm256_i32gather_epi32::<4>(t.low[k].as_ptr().cast(), lo),
+                )
+            };
+            unit(reverse(owen(_mm256_xor_si256(h, l), seed.scramble[k])))
+        };
+        let (mut x, mut y) = ([0.0f32; CHUNK_LANES], [0.0f32; CHUNK_LANES]);
+        // SAFETY: both arrays hold eight f32, an unaligned store's width.
+        unsafe {
+            _mm256_storeu_ps(x.as_mut_ptr(), axis(0));
+            _mm256_storeu_ps(y.as_mut_ptr(), axis(1));
+        }
+        for (l, point) in points.iter_mut().enumerate() {
+            point[d] = Vec2::new(x[l], y[l]);
+        }
+    }
+    points
+}
+
+/// [`sobol_2d_chunk`]'s body: [`sobol_2d_seeded`]'s steps, each over every lane. The
+/// two dimensions are reversed by two 32-bit reversals (the single-point version's
+/// 64-bit reversal swaps and reverses them: the same bits).
+#[inline(always)]
+fn chunk_lanes<const D: usize>(first: u32, seeds: &[SobolSeed; D]) -> [[Vec2; D]; CHUNK_LANES] {
+    type Lanes = [u32; CHUNK_LANES];
+    let t = tables();
+    let rev: Lanes = std::array::from_fn(|l| first.wrapping_add(l as u32).reverse_bits());
+    let mut points = [[Vec2::ZERO; D]; CHUNK_LANES];
+    for (d, seed) in seeds.iter().enumerate() {
+        let shuffled: Lanes = std::array::from_fn(|l| owen_scramble_rev(rev[l], seed.shuffle));
+        let axis = |k: usize| -> Lanes {
+            let sobol: Lanes = std::array::from_fn(|l| {
+                let (high, low) = (shuffled[l] >> 24, (shuffled[l] >> 16) & 0xff);
+                t.high[k][high as usize] ^ t.low[k][low as usize]
+            });
+            std::array::from_fn(|l| owen_scramble_rev(sobol[l], seed.scramble[k]).reverse_bits())
+        };
+        let (x, y) = (axis(0), axis(1));
+        for (l, point) in points.iter_mut().enumerate() {
+            point[d] = Vec2::new(u32_to_f32_norm(x[l]), u32_to_f32_norm(y[l]));
+        }
+    }
+    points
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_chunk_is_its_points_one_by_one() {
+        let seeds: [SobolSeed; 5] =
+            std::array::from_fn(|d| SobolSeed::new(0x9e37_79b9u32.wrapping_mul(d as u32 + 3)));
+        for first in (0..1u32 << 16).step_by(8).chain([3, 13, 65_529]) {
+            let check = |chunk: [[Vec2; 5]; CHUNK_LANES]| {
+                for (l, points) in chunk.iter().enumerate() {
+                    let index_rev = (first + l as u32).reverse_bits();
+                    if first + l as u32 >= 1 << 16 {
+                        continue;
+                    }
+                    for (d, p) in points.iter().enumerate() {
+                        let q = sobol_2d_seeded(index_rev, &seeds[d]);
+                        let bits = |v: Vec2| (v.x.to_bits(), v.y.to_bits());
+                        assert_eq!(bits(*p), bits(q), "first {first} lane {l} dimension {d}");
+                    }
+                }
+            };
+            check(sobol_2d_chunk(first, &seeds));
+            check(chunk_lanes(first, &seeds));
+            #[cfg(target_arch = "x86_64")]
+            if std::arch::is_x86_feature_detected!("avx2") {
+                // SAFETY: the processor has AVX2, checked just above.
+                check(unsafe { chunk_avx2(first, &seeds) });
+            }
+        }
+    }
 
     #[test]
     fn equals_the_crate_for_every_index() {

@@ -32,6 +32,8 @@
 //! without a tree ([`Geometry::is_flat`](crate::geometry::Geometry::is_flat)), its camera
 //! rays are then traced one at a time.
 
+mod order;
+
 use std::cell::RefCell;
 use std::ops::Range;
 use std::sync::Mutex;
@@ -47,9 +49,12 @@ use crate::geometry::{Ray, SurfaceHit};
 use crate::integrator::{Estimator, OptimalPixel};
 use crate::light::LightLanes;
 use crate::math::Spectrum;
-use crate::sampling::sampler::PixelStreams;
+use crate::sampling::sampler::Ahead;
+use crate::sampling::sobol::CHUNK_LANES;
 use crate::sampling::{Sampler, SamplerKind, Uniform};
 use crate::scene::{Camera, Scene};
+pub(super) use order::{BLOCK_HEIGHT, BLOCK_WIDTH, CHUNK};
+use order::{BlockPixel, each_sample, sample_order};
 
 /// Samples of a tile, handed out in [`sample_order`].
 pub(super) trait TileSamples: Sync {
@@ -66,73 +71,9 @@ pub(super) trait TileSamples: Sync {
     );
 }
 
-/// Width of the pixel blocks whose camera rays share a packet (with [`BLOCK_HEIGHT`], one
-/// ray per lane of a [`PACKET`]).
-pub(super) const BLOCK_WIDTH: u32 = 4;
-/// Height of the pixel blocks whose camera rays share a packet.
-pub(super) const BLOCK_HEIGHT: u32 = 2;
-const _: () = assert!((BLOCK_WIDTH * BLOCK_HEIGHT) as usize == PACKET);
-
-/// A pixel of a block: (x, y, its sampler streams).
-type BlockPixel = (u32, u32, PixelStreams);
-
-/// Sample indices per chunk. A pixel's samples of a chunk are shaded one after another:
-/// they share their surface, material and lights, which keeps the caches and branch
-/// predictors warm (shading index by index across the block instead took 1.6 % more
-/// instructions and ran at 0.91–0.95× on the README scene, `mesh_obj` and the
-/// 10⁶-triangle mesh).
-pub(super) const CHUNK: u32 = 8;
-
-/// Calls `f(sample indices, block)` for samples `samples` of every pixel of `tile` (of an
-/// image `width` pixels wide, streams of a `kind` sampler of `spp` samples per pixel keyed
-/// by `seed`): for each [`BLOCK_WIDTH`] × [`BLOCK_HEIGHT`] block of the image that the
-/// tile covers (blocks aligned to the image, row by row; the tile's part of it, pixels
-/// row by row), the samples in chunks of [`CHUNK`] consecutive indices.
-#[inline(always)]
-fn sample_order(
-    (x0, y0, x1, y1): Tile,
-    samples: Range<u32>,
-    (seed, width): (u64, u32),
-    (kind, spp): (SamplerKind, u32),
-    mut f: impl FnMut(Range<u32>, &[BlockPixel]),
-) {
-    for by in (y0 - y0 % BLOCK_HEIGHT..y1).step_by(BLOCK_HEIGHT as usize) {
-        for bx in (x0 - x0 % BLOCK_WIDTH..x1).step_by(BLOCK_WIDTH as usize) {
-            let mut block = [(0, 0, PixelStreams::default()); PACKET];
-            let mut n = 0;
-            for y in by.max(y0)..(by + BLOCK_HEIGHT).min(y1) {
-                for x in bx.max(x0)..(bx + BLOCK_WIDTH).min(x1) {
-                    let pixel = (y * width + x) as u64;
-                    block[n] = (x, y, PixelStreams::new(kind, seed, pixel, spp));
-                    n += 1;
-                }
-            }
-            for start in samples.clone().step_by(CHUNK as usize) {
-                f(start..(start + CHUNK).min(samples.end), &block[..n]);
-            }
-        }
-    }
-}
-
-/// Calls `f(x, y, pixel streams, sample index)` for every sample of [`sample_order`],
-/// one at a time: block by block, chunk by chunk, within a chunk pixel by pixel (the
-/// order the packet path shades them in).
-#[inline(always)]
-fn each_sample(
-    tile: Tile,
-    samples: Range<u32>,
-    seed_width: (u64, u32),
-    kind_spp: (SamplerKind, u32),
-    mut f: impl FnMut(u32, u32, &PixelStreams, u32),
-) {
-    sample_order(tile, samples, seed_width, kind_spp, |chunk, block| {
-        for (x, y, streams) in block {
-            for s in chunk.clone() {
-                f(*x, *y, streams, s);
-            }
-        }
-    });
-}
+/// The Sobol points of a chunk's samples of one pixel for their first dimensions
+/// ([`PixelStreams::chunk_ahead`](crate::sampling::sampler::PixelStreams::chunk_ahead)).
+type ChunkAhead = [Ahead; CHUNK_LANES];
 
 /// A sample at a time: `f(x, y, pixel key, sample index)` gives the film position and
 /// radiance (as the spatial-reuse rounds hand over their finished samples).
@@ -202,6 +143,26 @@ impl TileSamples for CameraPackets<'_> {
         seed_width: (u64, u32),
         sink: &mut impl FnMut(u32, u32, Vec2, Spectrum),
     ) {
+        // Compiled twice, so that the other samplers' packet loop computes no points
+        // ahead (their draws still test the sampler's `pointed`, which is 0).
+        match self.settings.sampler {
+            SamplerKind::Sobol => self.run_sampled::<true>(tile, samples, seed_width, sink),
+            _ => self.run_sampled::<false>(tile, samples, seed_width, sink),
+        }
+    }
+}
+
+impl CameraPackets<'_> {
+    /// [`TileSamples::run`], with the Sobol points of every chunk's first dimensions
+    /// computed together where `AHEAD` ([`ChunkAhead`]).
+    #[inline(always)]
+    fn run_sampled<const AHEAD: bool>(
+        &self,
+        tile: Tile,
+        samples: Range<u32>,
+        seed_width: (u64, u32),
+        sink: &mut impl FnMut(u32, u32, Vec2, Spectrum),
+    ) {
         // A tree of one node: a packet would save no node tests, only add its set-up;
         // nor in a scene tested without a tree, where a ray is one pass over the blocks.
         let geometry = &self.scene.geometry;
@@ -217,11 +178,17 @@ impl TileSamples for CameraPackets<'_> {
             sample_order(tile, samples, seed_width, kind, |chunk, block| {
                 let misses = self.misses(block);
                 if misses && self.scene.environment.is_none() {
-                    return self.dark(chunk, block, sink);
+                    return self.dark::<AHEAD>(chunk, block, sink);
                 }
-                for (x, y, streams) in block {
+                for pixel @ (x, y, streams) in block {
+                    let points = if AHEAD {
+                        streams.chunk_ahead(chunk.start, chunk.len())
+                    } else {
+                        None
+                    };
                     for s in chunk.clone() {
-                        let mut p = self.start(*x, *y, streams, s);
+                        let row = points.as_ref().map(|p| &p[(s - chunk.start) as usize]);
+                        let mut p = self.start(pixel, s, row);
                         let hit = if misses {
                             None
                         } else {
@@ -241,18 +208,27 @@ impl TileSamples for CameraPackets<'_> {
         let mut traced: Vec<(Pending, Option<SurfaceHit>)> =
             Vec::with_capacity(CHUNK as usize * PACKET);
         let mut stages = Stages::default();
+        let mut points = [ChunkAhead::default(); PACKET];
         sample_order(tile, samples, seed_width, kind, |chunk, block| {
             let misses = self.misses(block);
             if misses && self.scene.environment.is_none() {
-                return self.dark(chunk, block, sink);
+                return self.dark::<AHEAD>(chunk, block, sink);
+            }
+            // The Sobol points of the chunk's first dimensions, pixel by pixel.
+            if AHEAD {
+                for (p, (_, _, streams)) in points.iter_mut().zip(block) {
+                    *p = streams
+                        .chunk_ahead(chunk.start, chunk.len())
+                        .unwrap_or_default();
+                }
             }
             for s in chunk.clone() {
                 let start = traced.len();
-                traced.extend(
-                    block
-                        .iter()
-                        .map(|(x, y, streams)| (self.start(*x, *y, streams, s), None)),
-                );
+                let row = (s - chunk.start) as usize;
+                traced.extend(block.iter().zip(&points).map(|(pixel, p)| {
+                    let ahead = if AHEAD { Some(&p[row]) } else { None };
+                    (self.start(pixel, s, ahead), None)
+                }));
                 // A block that surely misses leaves every hit `None` (the environment's
                 // light comes from `radiance`).
                 if misses {
@@ -280,14 +256,13 @@ impl TileSamples for CameraPackets<'_> {
             traced.clear();
         });
     }
-}
 
-impl CameraPackets<'_> {
-    /// Sample `s` of pixel (x, y) (its streams `streams`): its stream, after the film
-    /// position it draws first, and its camera ray.
+    /// Sample `s` of `pixel` (its first numbers `ahead` if computed ahead): its stream,
+    /// after the film position it draws first, and its camera ray.
     #[inline(always)]
-    fn start(&self, x: u32, y: u32, streams: &PixelStreams, s: u32) -> Pending {
-        let (sampler, film) = self.film_position(x, y, streams, s);
+    fn start(&self, pixel: &BlockPixel, s: u32, ahead: Option<&Ahead>) -> Pending {
+        let (x, y, _) = *pixel;
+        let (sampler, film) = self.film_position(pixel, s, ahead);
         Pending {
             x,
             y,
@@ -297,13 +272,21 @@ impl CameraPackets<'_> {
         }
     }
 
-    /// Sample `s` of pixel (x, y) (its streams `streams`): its stream and the film
-    /// position it draws first.
+    /// Sample `s` of pixel `(x, y, streams)` (its first numbers `ahead` if computed
+    /// ahead): its stream and the film position it draws first.
     #[inline(always)]
-    fn film_position(&self, x: u32, y: u32, streams: &PixelStreams, s: u32) -> (Sampler, Vec2) {
+    fn film_position(
+        &self,
+        (x, y, streams): &BlockPixel,
+        s: u32,
+        ahead: Option<&Ahead>,
+    ) -> (Sampler, Vec2) {
         let (kind, spp) = (self.settings.sampler, self.settings.spp);
-        let mut sampler = Sampler::for_streams(kind, streams, s, spp);
-        let film = Vec2::new(x as f32, y as f32) + sampler.next_2d();
+        let mut sampler = match ahead {
+            Some(a) => Sampler::with_ahead(kind, streams, s, spp, a),
+            None => Sampler::for_streams(kind, streams, s, spp),
+        };
+        let film = Vec2::new(*x as f32, *y as f32) + sampler.next_2d();
         (sampler, film)
     }
 
@@ -312,16 +295,22 @@ impl CameraPackets<'_> {
     /// ray brings), and no camera ray is made. The film positions are drawn only where
     /// the sink uses them ([`CameraPackets::positions`]); otherwise each sample goes
     /// with its pixel's centre.
-    fn dark(
+    fn dark<const AHEAD: bool>(
         &self,
         chunk: Range<u32>,
         block: &[BlockPixel],
         sink: &mut impl FnMut(u32, u32, Vec2, Spectrum),
     ) {
-        for (x, y, streams) in block {
+        for pixel @ (x, y, streams) in block {
+            let points = if AHEAD && self.positions {
+                streams.chunk_ahead(chunk.start, chunk.len())
+            } else {
+                None
+            };
             for s in chunk.clone() {
                 let film = if self.positions {
-                    self.film_position(*x, *y, streams, s).1
+                    let row = points.as_ref().map(|p| &p[(s - chunk.start) as usize]);
+                    self.film_position(pixel, s, row).1
                 } else {
                     Vec2::new(*x as f32 + 0.5, *y as f32 + 0.5)
                 };

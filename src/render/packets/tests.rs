@@ -26,6 +26,23 @@ fn trace(job: &impl TileSamples, tile: Tile, samples: Range<u32>, seed_width: (u
     out
 }
 
+/// The settings `own` with `sampler`, and their camera and estimator for `scene`.
+fn set_up(
+    scene: &Scene,
+    own: &RenderSettings,
+    sampler: SamplerKind,
+) -> (RenderSettings, Camera, Estimator) {
+    let settings = RenderSettings {
+        sampler,
+        ..own.clone()
+    };
+    let camera = settings.camera(scene);
+    let estimator = Estimator::new(scene, settings.estimator, settings.light_select)
+        .with_mis(settings.mis)
+        .with_light_strategy(scene, settings.light_strategy());
+    (settings, camera, estimator)
+}
+
 /// Camera packets give every sample the radiance the one-ray-at-a-time path gives it
 /// (the pre-packet renderer's sample, written out here), in the same order, on
 /// scenes of rectangles, spheres and meshes, with a count of samples that is not a
@@ -52,78 +69,83 @@ fn packets_give_the_samples_of_single_rays() {
         let depth = scene.geometry.bvh().depth();
         let single = depth < MIN_PACKET_DEPTH || scene.geometry.is_flat();
         assert_eq!(single, !packets, "{spec}: depth {depth}");
-        let mut settings = RenderSettings::for_scene(&scene);
+        let mut scenes_own = RenderSettings::for_scene(&scene);
         if optimal_mis {
-            settings.estimator = EstimatorKind::Mis;
-            settings.mis.heuristic = MisHeuristic::Optimal;
+            scenes_own.estimator = EstimatorKind::Mis;
+            scenes_own.mis.heuristic = MisHeuristic::Optimal;
         }
-        let camera = settings.camera(&scene);
-        let estimator = Estimator::new(&scene, settings.estimator, settings.light_select)
-            .with_mis(settings.mis)
-            .with_light_strategy(&scene, settings.light_strategy());
-        let pixels = (camera.width * camera.height) as usize;
-        let states = |n: usize| -> Vec<Mutex<OptimalPixel>> {
-            (0..n)
-                .map(|_| Mutex::new(OptimalPixel::default()))
-                .collect()
-        };
-        let (optimal_a, optimal_b) = if optimal_mis {
-            (states(pixels), states(pixels))
-        } else {
-            (Vec::new(), Vec::new())
-        };
-        let invalid = AtomicU64::new(0);
-        // The estimates in stages with light samples in lanes where they apply (all
-        // but optimal MIS and the point lights), and whole.
-        let lanes = light_lanes(&scene, &estimator);
-        assert_eq!(
-            lanes.is_some(),
-            !optimal_mis && !spec.contains("tent"),
-            "{spec}"
-        );
-        let packets = CameraPackets {
-            scene: &scene,
-            settings: &settings,
-            camera: &camera,
-            estimator: &estimator,
-            optimal: &optimal_a,
-            invalid: &invalid,
-            lanes: lanes.as_ref(),
-            cull: None,
-            positions: true,
-        };
-        let single = OneByOne(|x: u32, y: u32, key: u64, s: u32| {
-            let mut sampler = Sampler::for_pixel(settings.sampler, key, s, settings.spp);
-            let p = Vec2::new(x as f32, y as f32) + sampler.next_2d();
-            let ray = camera.ray(p);
-            let l = match optimal_b.get((y * camera.width + x) as usize) {
-                Some(cell) => {
-                    let mut guard = cell.lock().expect("unpoisoned");
-                    let state = RefCell::new(*guard);
-                    let l = estimator.radiance_in(&scene, &ray, &mut sampler, Some(&state));
-                    *guard = state.into_inner();
-                    l
+        // The scene's sampler, and Sobol's points drawn a chunk at a time.
+        for sampler in [scenes_own.sampler, SamplerKind::Sobol] {
+            let (settings, camera, estimator) = set_up(&scene, &scenes_own, sampler);
+            let pixels = (camera.width * camera.height) as usize;
+            let states = |n: usize| -> Vec<Mutex<OptimalPixel>> {
+                (0..n)
+                    .map(|_| Mutex::new(OptimalPixel::default()))
+                    .collect()
+            };
+            let (optimal_a, optimal_b) = if optimal_mis {
+                (states(pixels), states(pixels))
+            } else {
+                (Vec::new(), Vec::new())
+            };
+            let invalid = AtomicU64::new(0);
+            // The estimates in stages with light samples in lanes where they apply (all
+            // but optimal MIS and the point lights), and whole.
+            let lanes = light_lanes(&scene, &estimator);
+            assert_eq!(
+                lanes.is_some(),
+                !optimal_mis && !spec.contains("tent"),
+                "{spec}"
+            );
+            let packets = CameraPackets {
+                scene: &scene,
+                settings: &settings,
+                camera: &camera,
+                estimator: &estimator,
+                optimal: &optimal_a,
+                invalid: &invalid,
+                lanes: lanes.as_ref(),
+                cull: None,
+                positions: true,
+            };
+            let single = OneByOne(|x: u32, y: u32, key: u64, s: u32| {
+                let mut sampler = Sampler::for_pixel(settings.sampler, key, s, settings.spp);
+                let p = Vec2::new(x as f32, y as f32) + sampler.next_2d();
+                let ray = camera.ray(p);
+                let l = match optimal_b.get((y * camera.width + x) as usize) {
+                    Some(cell) => {
+                        let mut guard = cell.lock().expect("unpoisoned");
+                        let state = RefCell::new(*guard);
+                        let l = estimator.radiance_in(&scene, &ray, &mut sampler, Some(&state));
+                        *guard = state.into_inner();
+                        l
+                    }
+                    None => estimator.radiance(&scene, &ray, &mut sampler),
+                };
+                (p, if l.is_finite() { l } else { Spectrum::ZERO })
+            });
+            let (w, h) = (camera.width, camera.height);
+            let yc = (h as f32 * at) as u32;
+            let tile = (w / 2 - 3, yc - 2, w / 2 + 3, yc + 2);
+            let key = (settings.seed, w);
+            // 5 samples per pixel, within one chunk; 14, over three. The tile cuts the
+            // image's blocks, so packets are partial.
+            for samples in [3..8, 5..19] {
+                let n = samples.len();
+                let a = trace(&packets, tile, samples.clone(), key);
+                let b = trace(&single, tile, samples.clone(), key);
+                assert_eq!(a.len(), 24 * n);
+                assert!(a.iter().any(|s| s.3 != [0; 3]), "{spec}: all black");
+                assert_eq!(a, b, "{spec} {sampler:?} {samples:?}");
+                if lanes.is_some() {
+                    let whole = CameraPackets {
+                        lanes: None,
+                        ..packets
+                    };
+                    let c = trace(&whole, tile, samples.clone(), key);
+                    assert_eq!(c, b, "{spec} {sampler:?} without lanes");
                 }
-                None => estimator.radiance(&scene, &ray, &mut sampler),
-            };
-            (p, if l.is_finite() { l } else { Spectrum::ZERO })
-        });
-        let (w, h) = (camera.width, camera.height);
-        let yc = (h as f32 * at) as u32;
-        let tile = (w / 2 - 3, yc - 2, w / 2 + 3, yc + 2);
-        let key = (settings.seed, w);
-        // 5 samples per pixel; the tile cuts the image's blocks, so packets are partial.
-        let a = trace(&packets, tile, 3..8, key);
-        let b = trace(&single, tile, 3..8, key);
-        assert_eq!(a.len(), 24 * 5);
-        assert!(a.iter().any(|s| s.3 != [0; 3]), "{spec}: all black");
-        assert_eq!(a, b, "{spec}");
-        if lanes.is_some() {
-            let whole = CameraPackets {
-                lanes: None,
-                ..packets
-            };
-            assert_eq!(trace(&whole, tile, 3..8, key), b, "{spec} without lanes");
+            }
         }
     }
 }
@@ -148,56 +170,56 @@ fn per_pixel(trace: Trace) -> PerPixel {
 #[test]
 fn samples_do_not_depend_on_rounds_passes_or_tiles() {
     let scene = load("tests/scenes/mesh_obj.xml").expect("scene");
-    let mut settings = RenderSettings::for_scene(&scene);
-    settings.resolution = Some((32, 24));
-    settings.seed = 5;
-    settings.spp = 12;
-    let camera = settings.camera(&scene);
-    let estimator = Estimator::new(&scene, settings.estimator, settings.light_select)
-        .with_mis(settings.mis)
-        .with_light_strategy(&scene, settings.light_strategy());
-    let invalid = AtomicU64::new(0);
-    let lanes = light_lanes(&scene, &estimator);
-    assert!(lanes.is_some());
-    // With the light lanes (the estimate in stages) and without.
-    for lanes in [lanes.as_ref(), None] {
-        let packets = CameraPackets {
-            scene: &scene,
-            settings: &settings,
-            camera: &camera,
-            estimator: &estimator,
-            optimal: &[],
-            invalid: &invalid,
-            lanes,
-            cull: None,
-            positions: true,
-        };
-        let (w, h) = (camera.width, camera.height);
-        let key = (settings.seed, w);
-        // The samples in rounds of two and of one sample per pixel (as the single
-        // and the 3-pass render took them when rounds were always eighths), over the
-        // render's 4 × 4 tiles; and all in one piece over the whole image.
-        let in_rounds = |rounds: &[Range<u32>], tiles: &[Tile]| {
-            let mut out = BTreeMap::new();
-            for samples in rounds {
-                for &tile in tiles {
-                    let trace = trace(&packets, tile, samples.clone(), key);
-                    for (pixel, list) in per_pixel(trace) {
-                        out.entry(pixel).or_insert_with(Vec::new).extend(list);
+    let mut scenes_own = RenderSettings::for_scene(&scene);
+    scenes_own.resolution = Some((32, 24));
+    scenes_own.seed = 5;
+    scenes_own.spp = 12;
+    // The scene's sampler, and Sobol's points drawn a chunk at a time.
+    for sampler in [scenes_own.sampler, SamplerKind::Sobol] {
+        let (settings, camera, estimator) = set_up(&scene, &scenes_own, sampler);
+        let invalid = AtomicU64::new(0);
+        let lanes = light_lanes(&scene, &estimator);
+        assert!(lanes.is_some());
+        // With the light lanes (the estimate in stages) and without.
+        for lanes in [lanes.as_ref(), None] {
+            let packets = CameraPackets {
+                scene: &scene,
+                settings: &settings,
+                camera: &camera,
+                estimator: &estimator,
+                optimal: &[],
+                invalid: &invalid,
+                lanes,
+                cull: None,
+                positions: true,
+            };
+            let (w, h) = (camera.width, camera.height);
+            let key = (settings.seed, w);
+            // The samples in rounds of two and of one sample per pixel (as the single
+            // and the 3-pass render took them when rounds were always eighths), over the
+            // render's 4 × 4 tiles; and all in one piece over the whole image.
+            let in_rounds = |rounds: &[Range<u32>], tiles: &[Tile]| {
+                let mut out = BTreeMap::new();
+                for samples in rounds {
+                    for &tile in tiles {
+                        let trace = trace(&packets, tile, samples.clone(), key);
+                        for (pixel, list) in per_pixel(trace) {
+                            out.entry(pixel).or_insert_with(Vec::new).extend(list);
+                        }
                     }
                 }
-            }
-            out
-        };
-        let tiles = super::super::tiles(w, h, 4);
-        let single: Vec<Range<u32>> = (0..6).map(|r| 2 * r..2 * r + 2).collect();
-        let passes: Vec<Range<u32>> = (0..12).map(|s| s..s + 1).collect();
-        let all_at_once = std::slice::from_ref(&(0..12));
-        let whole = in_rounds(all_at_once, &[(0, 0, w, h)]);
-        assert_eq!(whole, in_rounds(&single, &tiles));
-        assert_eq!(whole, in_rounds(&passes, &tiles));
-        assert_eq!(whole.len(), (w * h) as usize);
-        assert!(whole.values().all(|list| list.len() == 12));
+                out
+            };
+            let tiles = super::super::tiles(w, h, 4);
+            let single: Vec<Range<u32>> = (0..6).map(|r| 2 * r..2 * r + 2).collect();
+            let passes: Vec<Range<u32>> = (0..12).map(|s| s..s + 1).collect();
+            let all_at_once = std::slice::from_ref(&(0..12));
+            let whole = in_rounds(all_at_once, &[(0, 0, w, h)]);
+            assert_eq!(whole, in_rounds(&single, &tiles));
+            assert_eq!(whole, in_rounds(&passes, &tiles));
+            assert_eq!(whole.len(), (w * h) as usize);
+            assert!(whole.values().all(|list| list.len() == 12));
+        }
     }
 }
 
@@ -219,69 +241,71 @@ fn culled_blocks_give_the_samples_of_single_rays() {
         "tests/scenes/envmap_rotated.xml",
     ] {
         let scene = load(spec).expect("scene");
-        let mut settings = RenderSettings::for_scene(&scene);
-        settings.resolution = Some((40, 32));
-        let camera = settings.camera(&scene);
-        let estimator = Estimator::new(&scene, settings.estimator, settings.light_select)
-            .with_mis(settings.mis)
-            .with_light_strategy(&scene, settings.light_strategy());
-        let boxes = scene.geometry.bvh().cut(TOP_BOXES);
-        let cull = FrustumCull::new(&camera, &boxes).expect("finite boxes");
-        let (w, h) = (camera.width, camera.height);
-        let culled = (0..h / BLOCK_HEIGHT)
-            .flat_map(|by| (0..w / BLOCK_WIDTH).map(move |bx| (bx, by)))
-            .filter(|&(bx, by)| {
-                let (x, y) = ((bx * BLOCK_WIDTH) as f64, (by * BLOCK_HEIGHT) as f64);
-                let size = (BLOCK_WIDTH as f64, BLOCK_HEIGHT as f64);
-                cull.misses((x, y), (x + size.0, y + size.1))
-            })
-            .count();
-        let blocks = (w / BLOCK_WIDTH * (h / BLOCK_HEIGHT)) as usize;
-        assert!(
-            culled > 0 && culled < blocks,
-            "{spec}: {culled} of {blocks} culled"
-        );
-        let nothing = FrustumCull::new(&camera, &[Aabb::EMPTY]).expect("an empty box");
-        let invalid = AtomicU64::new(0);
-        let lanes = light_lanes(&scene, &estimator);
-        let key = (settings.seed, w);
-        // Samples 5..19: a partial chunk, a whole one and a partial one again.
-        let samples = 5..19;
-        let mut runs = vec![lanes.as_ref()];
-        if lanes.is_some() {
-            runs.push(None);
-        }
-        for lanes in runs {
-            let packets = |cull, positions| CameraPackets {
-                scene: &scene,
-                settings: &settings,
-                camera: &camera,
-                estimator: &estimator,
-                optimal: &[],
-                invalid: &invalid,
-                lanes,
-                cull: Some(cull),
-                positions,
-            };
-            let plain = CameraPackets {
-                cull: None,
-                ..packets(&cull, true)
-            };
-            let expected = trace(&plain, (0, 0, w, h), samples.clone(), key);
-            assert_eq!(expected.len(), (w * h * 14) as usize);
-            let culled = trace(&packets(&cull, true), (0, 0, w, h), samples.clone(), key);
-            assert_eq!(culled, expected, "{spec}, lanes {}", lanes.is_some());
-            let all = trace(&packets(&nothing, true), (0, 0, w, h), samples.clone(), key);
-            assert_ne!(all, expected, "{spec}: the footprint is not asked");
-            // Without film positions (the one-pixel box filter) only they may differ,
-            // and only where the scene has no environment to be seen.
-            let no_positions = trace(&packets(&cull, false), (0, 0, w, h), samples.clone(), key);
-            let unplaced = |t: &Trace| -> Vec<_> { t.iter().map(|s| (s.0, s.1, s.3)).collect() };
-            assert_eq!(unplaced(&no_positions), unplaced(&expected), "{spec}");
-            if scene.environment.is_some() {
-                assert_eq!(no_positions, expected, "{spec}");
-            } else {
-                assert_ne!(no_positions, expected, "{spec}: positions were drawn");
+        let mut scenes_own = RenderSettings::for_scene(&scene);
+        scenes_own.resolution = Some((40, 32));
+        // The scene's sampler, and Sobol's points drawn a chunk at a time.
+        for sampler in [scenes_own.sampler, SamplerKind::Sobol] {
+            let (settings, camera, estimator) = set_up(&scene, &scenes_own, sampler);
+            let boxes = scene.geometry.bvh().cut(TOP_BOXES);
+            let cull = FrustumCull::new(&camera, &boxes).expect("finite boxes");
+            let (w, h) = (camera.width, camera.height);
+            let culled = (0..h / BLOCK_HEIGHT)
+                .flat_map(|by| (0..w / BLOCK_WIDTH).map(move |bx| (bx, by)))
+                .filter(|&(bx, by)| {
+                    let (x, y) = ((bx * BLOCK_WIDTH) as f64, (by * BLOCK_HEIGHT) as f64);
+                    let size = (BLOCK_WIDTH as f64, BLOCK_HEIGHT as f64);
+                    cull.misses((x, y), (x + size.0, y + size.1))
+                })
+                .count();
+            let blocks = (w / BLOCK_WIDTH * (h / BLOCK_HEIGHT)) as usize;
+            assert!(
+                culled > 0 && culled < blocks,
+                "{spec}: {culled} of {blocks} culled"
+            );
+            let nothing = FrustumCull::new(&camera, &[Aabb::EMPTY]).expect("an empty box");
+            let invalid = AtomicU64::new(0);
+            let lanes = light_lanes(&scene, &estimator);
+            let key = (settings.seed, w);
+            // Samples 5..19: a partial chunk, a whole one and a partial one again.
+            let samples = 5..19;
+            let mut runs = vec![lanes.as_ref()];
+            if lanes.is_some() {
+                runs.push(None);
+            }
+            for lanes in runs {
+                let packets = |cull, positions| CameraPackets {
+                    scene: &scene,
+                    settings: &settings,
+                    camera: &camera,
+                    estimator: &estimator,
+                    optimal: &[],
+                    invalid: &invalid,
+                    lanes,
+                    cull: Some(cull),
+                    positions,
+                };
+                let plain = CameraPackets {
+                    cull: None,
+                    ..packets(&cull, true)
+                };
+                let expected = trace(&plain, (0, 0, w, h), samples.clone(), key);
+                assert_eq!(expected.len(), (w * h * 14) as usize);
+                let culled = trace(&packets(&cull, true), (0, 0, w, h), samples.clone(), key);
+                assert_eq!(culled, expected, "{spec}, lanes {}", lanes.is_some());
+                let all = trace(&packets(&nothing, true), (0, 0, w, h), samples.clone(), key);
+                assert_ne!(all, expected, "{spec}: the footprint is not asked");
+                // Without film positions (the one-pixel box filter) only they may differ,
+                // and only where the scene has no environment to be seen.
+                let no_positions =
+                    trace(&packets(&cull, false), (0, 0, w, h), samples.clone(), key);
+                let unplaced =
+                    |t: &Trace| -> Vec<_> { t.iter().map(|s| (s.0, s.1, s.3)).collect() };
+                assert_eq!(unplaced(&no_positions), unplaced(&expected), "{spec}");
+                if scene.environment.is_some() {
+                    assert_eq!(no_positions, expected, "{spec}");
+                } else {
+                    assert_ne!(no_positions, expected, "{spec}: positions were drawn");
+                }
             }
         }
     }

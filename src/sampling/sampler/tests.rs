@@ -1,6 +1,7 @@
 //! Tests of the per-sample streams: unit interval, bijective permutations, strata that
 //! tile the square, and the same numbers through a pixel's streams as through its key.
 
+use super::strata::kensler_hash;
 use super::*;
 
 #[test]
@@ -100,18 +101,37 @@ fn streams_draw_what_the_key_draws() {
             let streams = PixelStreams::new(kind, 11, pixel, laid_out);
             assert_eq!(streams.key(), Sampler::pixel_key(11, pixel));
             for s in [0u32, 1, 7, 63, 71, SOBOL_MAX_SAMPLES] {
-                let mut a = Sampler::new(kind, 11, pixel, s, spp);
-                let mut b = Sampler::for_streams(kind, &streams, s, spp);
-                for d in 0..3 * SEEDED_DIMENSIONS {
-                    let (x, y) = if d % 3 == 1 {
-                        (Vec2::splat(a.next_1d()), Vec2::splat(b.next_1d()))
-                    } else {
-                        (a.next_2d(), b.next_2d())
+                let a = Sampler::new(kind, 11, pixel, s, spp);
+                let b = Sampler::for_streams(kind, &streams, s, spp);
+                // The first dimensions' numbers computed with the sample's chunk: whole
+                // (in lanes), of three samples (in lanes where AVX2 is), of one (alone).
+                for len in [CHUNK_LANES as u32, 3, 1] {
+                    let first = s - s % len;
+                    let ahead = streams.chunk_ahead(first, len as usize);
+                    let chunked = kind == SamplerKind::Sobol && first < SOBOL_MAX_SAMPLES;
+                    assert_eq!(ahead.is_some(), chunked);
+                    // A chunk may straddle Sobol's last index: its later samples take none.
+                    let sobol = kind == SamplerKind::Sobol && s < SOBOL_MAX_SAMPLES;
+                    let mut c = match &ahead {
+                        Some(a) => {
+                            Sampler::with_ahead(kind, &streams, s, spp, &a[(s - first) as usize])
+                        }
+                        None => Sampler::for_streams(kind, &streams, s, spp),
                     };
-                    assert_eq!(
-                        x.to_array().map(f32::to_bits),
-                        y.to_array().map(f32::to_bits)
-                    );
+                    assert_eq!(c.pointed, if sobol { SEEDED_DIMENSIONS as u32 } else { 0 });
+                    let mut a = a.clone();
+                    let mut b = b.clone();
+                    for d in 0..3 * SEEDED_DIMENSIONS {
+                        let (x, y, z) = if d % 3 == 1 {
+                            let one = |s: &mut Sampler| Vec2::splat(s.next_1d());
+                            (one(&mut a), one(&mut b), one(&mut c))
+                        } else {
+                            (a.next_2d(), b.next_2d(), c.next_2d())
+                        };
+                        let bits = |v: Vec2| v.to_array().map(f32::to_bits);
+                        assert_eq!(bits(x), bits(y));
+                        assert_eq!(bits(x), bits(z), "{kind:?} sample {s} draw {d} of {len}");
+                    }
                 }
             }
         }

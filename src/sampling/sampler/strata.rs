@@ -1,0 +1,139 @@
+//! Strata for the `stratified` sampler: equal-area cells of the unit square and
+//! Kensler's hashed permutations, which give each dimension its own order of the cells.
+
+use glam::Vec2;
+
+use super::ONE_MINUS_EPSILON;
+
+/// A point jittered inside cell `cell` of `n` equal-area cells that tile the unit square:
+/// ⌊√n⌋ rows, each cut into as many cells as its share of `n`, with row heights
+/// proportional to their cell counts so that every cell has area 1/n. For square `n`
+/// this is the usual jittered grid.
+pub fn equal_area_cell(cell: u32, n: u32, jitter: Vec2) -> Vec2 {
+    EqualAreaRows::new(n).cell(cell, jitter)
+}
+
+/// The strata of `n` samples: the row layout of [`equal_area_cell`] (a square root and
+/// two integer divisions) and [`permute`]'s bit mask, computed once per pixel
+/// ([`PixelStreams`](super::PixelStreams)) rather than once per sample and per dimension.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct EqualAreaRows {
+    pub(super) n: u32,
+    base: u32,
+    extra: u32,
+    /// [`permutation_mask`] of `n`.
+    mask: u32,
+}
+
+impl EqualAreaRows {
+    /// A placeholder for samplers that do not stratify.
+    pub(super) const UNUSED: EqualAreaRows = EqualAreaRows {
+        n: 1,
+        base: 1,
+        extra: 0,
+        mask: 0,
+    };
+
+    pub(super) fn new(n: u32) -> EqualAreaRows {
+        let rows = (n as f32).sqrt() as u32;
+        let rows = rows.clamp(1, n.max(1));
+        EqualAreaRows {
+            n,
+            base: n / rows,
+            extra: n % rows,
+            mask: permutation_mask(n),
+        }
+    }
+
+    /// [`equal_area_cell`] of `cell` in this layout.
+    #[inline]
+    pub(super) fn cell(&self, cell: u32, jitter: Vec2) -> Vec2 {
+        let EqualAreaRows { n, base, extra, .. } = *self;
+        equal_area_cell_in(cell, n, base, extra, jitter)
+    }
+
+    /// [`permute`] of `i` among the `n` samples under `seed`.
+    #[inline]
+    pub(super) fn permute(&self, i: u32, seed: u32) -> u32 {
+        permute_masked(i, self.n, self.mask, seed)
+    }
+}
+
+/// [`equal_area_cell`] with the layout given: `base` cells per row, the first `extra`
+/// rows one more.
+#[inline]
+fn equal_area_cell_in(cell: u32, n: u32, base: u32, extra: u32, jitter: Vec2) -> Vec2 {
+    // Rows 0..extra hold base + 1 cells, the rest hold base.
+    let (row, col, before) = if cell < extra * (base + 1) {
+        let r = cell / (base + 1);
+        (r, cell % (base + 1), r * (base + 1))
+    } else {
+        let c = cell - extra * (base + 1);
+        let r = extra + c / base;
+        (r, c % base, extra * (base + 1) + (r - extra) * base)
+    };
+    let cells_in_row = if row < extra { base + 1 } else { base };
+    let y0 = before as f32 / n as f32;
+    let height = cells_in_row as f32 / n as f32;
+    Vec2::new(
+        ((col as f32 + jitter.x) / cells_in_row as f32).min(ONE_MINUS_EPSILON),
+        (y0 + jitter.y * height).min(ONE_MINUS_EPSILON),
+    )
+}
+
+/// A pseudo-random permutation of 0..n evaluated at `i` (Kensler 2013, "Correlated
+/// Multi-Jittered Sampling", Pixar TM 13-01): a hashed bijection on the next power of
+/// two, cycle-walked back into range.
+pub fn permute(i: u32, n: u32, seed: u32) -> u32 {
+    permute_masked(i, n, permutation_mask(n), seed)
+}
+
+/// [`permute`]'s bit mask for `n` samples: n − 1's highest bit and every bit below it
+/// (0 for n ≤ 1).
+fn permutation_mask(n: u32) -> u32 {
+    match n.saturating_sub(1) {
+        0 => 0,
+        m => u32::MAX >> m.leading_zeros(),
+    }
+}
+
+/// [`permute`] with its mask `w` (n − 1's highest bit and the bits below) given.
+#[inline]
+fn permute_masked(mut i: u32, n: u32, w: u32, seed: u32) -> u32 {
+    if n <= 1 {
+        return 0;
+    }
+    loop {
+        i = kensler_hash(i, w, seed);
+        if i < n {
+            break;
+        }
+    }
+    let i = i.wrapping_add(seed);
+    // n a power of two (the usual sample counts): the remainder is the low bits.
+    if n & w == 0 { i & w } else { i % n }
+}
+
+/// One round of Kensler's hash: a bijection on the integers below the power of two
+/// `w` + 1, keyed by `seed` ([`permute`] walks it until the value falls below n).
+#[inline(always)]
+pub(super) fn kensler_hash(mut i: u32, w: u32, seed: u32) -> u32 {
+    i ^= seed;
+    i = i.wrapping_mul(0xe170_893d);
+    i ^= seed >> 16;
+    i ^= (i & w) >> 4;
+    i ^= seed >> 8;
+    i = i.wrapping_mul(0x0929_eb3f);
+    i ^= seed >> 23;
+    i ^= (i & w) >> 1;
+    i = i.wrapping_mul(1 | seed >> 27);
+    i = i.wrapping_mul(0x6935_fa69);
+    i ^= (i & w) >> 11;
+    i = i.wrapping_mul(0x74dc_b303);
+    i ^= (i & w) >> 2;
+    i = i.wrapping_mul(0x9e50_1cc3);
+    i ^= (i & w) >> 2;
+    i = i.wrapping_mul(0xc860_a3df);
+    i &= w;
+    i ^ (i >> 5)
+}
