@@ -61,6 +61,8 @@ def main():
     ap.add_argument("--cpu", action="store_true",
                     help="time user + system CPU instead of wall time")
     args = ap.parse_args(argv)
+    if args.runs < 1:
+        ap.error("--runs must be at least 1")
     out = tempfile.mkdtemp(prefix="lightlab-ab-")
     cases = [extra] if extra else [
         ["render", "-o", os.path.join(out, "a.png")],

@@ -51,8 +51,9 @@ pub const SEEDED_DIMENSIONS: usize = 4;
 
 /// The part of a pixel's sampler streams that every sample of the pixel shares: its key;
 /// for `sobol`, the hashed seeds of its first [`SEEDED_DIMENSIONS`] dimensions (each
-/// dimension's seed depends on the pixel alone, Burley 2020 §4, so its three hashes need
-/// not be redone for every sample); for `stratified`, the strata's layout for the
+/// dimension's seed depends on the pixel alone, Burley 2020 §4), from which
+/// [`PixelStreams::chunk_ahead`] draws a chunk's points without hashing them again for
+/// every sample; for `stratified`, the strata's layout for the
 /// render's sample count. [`Sampler::for_streams`], and [`Sampler::with_ahead`] with its
 /// chunk's points, draw the same numbers as [`Sampler::for_pixel`] with the same key.
 #[derive(Clone, Copy, Debug, Default)]
@@ -115,12 +116,20 @@ impl PixelStreams {
     /// independent numbers).
     #[inline]
     pub fn chunk_ahead(&self, first: u32, len: usize) -> Option<[Ahead; CHUNK_LANES]> {
+        self.chunk_ahead_in(first, len, chunk_is_wide())
+    }
+
+    /// [`PixelStreams::chunk_ahead`] with the lanes' width given (`wide`: AVX2's).
+    #[inline(always)]
+    fn chunk_ahead_in(&self, first: u32, len: usize, wide: bool) -> Option<[Ahead; CHUNK_LANES]> {
         if self.seeded != SEEDED_DIMENSIONS as u32 || first >= SOBOL_MAX_SAMPLES {
             return None;
         }
-        if len >= CHUNK_LANES || (len >= 2 && chunk_is_wide()) {
+        if len >= CHUNK_LANES || (len >= 2 && wide) {
             return Some(sobol_2d_chunk(first, &self.sobol));
         }
+        // Sample by sample, up to Sobol's last index (later samples take none).
+        let len = len.min((SOBOL_MAX_SAMPLES - first) as usize);
         let mut ahead = [Ahead::default(); CHUNK_LANES];
         for (l, points) in ahead.iter_mut().enumerate().take(len) {
             let index_rev = first.wrapping_add(l as u32).reverse_bits();

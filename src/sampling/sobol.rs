@@ -46,8 +46,9 @@ const SHUFFLE_SALT: u32 = 0x79c6_8e4a;
 
 /// The hashes of one seed that a Sobol point needs before it looks at the index: the
 /// index shuffle's scramble (Burley 2020 §3) and each dimension's (§2). They depend on
-/// the seed alone, so a sampler whose seeds repeat from sample to sample (a pixel's
-/// dimensions, see [`crate::sampling::sampler::PixelStreams`]) hashes them once.
+/// the seed alone, so where seeds repeat from sample to sample (a pixel's first
+/// dimensions) they are hashed once: [`crate::sampling::sampler::PixelStreams`] holds
+/// them for the chunks of points it draws.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct SobolSeed {
     shuffle: u32,

@@ -208,7 +208,7 @@ impl CameraPackets<'_> {
         let mut traced: Vec<(Pending, Option<SurfaceHit>)> =
             Vec::with_capacity(CHUNK as usize * PACKET);
         let mut stages = Stages::default();
-        let mut points = [ChunkAhead::default(); PACKET];
+        let mut points: [Option<ChunkAhead>; PACKET] = [None; PACKET];
         sample_order(tile, samples, seed_width, kind, |chunk, block| {
             let misses = self.misses(block);
             if misses && self.scene.environment.is_none() {
@@ -217,16 +217,18 @@ impl CameraPackets<'_> {
             // The Sobol points of the chunk's first dimensions, pixel by pixel.
             if AHEAD {
                 for (p, (_, _, streams)) in points.iter_mut().zip(block) {
-                    *p = streams
-                        .chunk_ahead(chunk.start, chunk.len())
-                        .unwrap_or_default();
+                    *p = streams.chunk_ahead(chunk.start, chunk.len());
                 }
             }
             for s in chunk.clone() {
                 let start = traced.len();
                 let row = (s - chunk.start) as usize;
                 traced.extend(block.iter().zip(&points).map(|(pixel, p)| {
-                    let ahead = if AHEAD { Some(&p[row]) } else { None };
+                    let ahead = if AHEAD {
+                        p.as_ref().map(|p| &p[row])
+                    } else {
+                        None
+                    };
                     (self.start(pixel, s, ahead), None)
                 }));
                 // A block that surely misses leaves every hit `None` (the environment's

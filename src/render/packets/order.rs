@@ -53,7 +53,10 @@ pub(super) fn sample_order(
                 }
             }
             for start in samples.clone().step_by(CHUNK as usize) {
-                f(start..(start + CHUNK).min(samples.end), &block[..n]);
+                f(
+                    start..start.saturating_add(CHUNK).min(samples.end),
+                    &block[..n],
+                );
             }
         }
     }

@@ -136,6 +136,25 @@ fn streams_draw_what_the_key_draws() {
             }
         }
     }
+    // Chunks of every length, in lanes and sample by sample (whichever this processor
+    // would take), hand every sample of theirs its own points, up to Sobol's last index.
+    let streams = PixelStreams::new(SamplerKind::Sobol, 11, 5, 64);
+    for first in [0u32, 5, 64, SOBOL_MAX_SAMPLES - 3] {
+        for len in 1..=CHUNK_LANES {
+            for wide in [false, true] {
+                let ahead = streams.chunk_ahead_in(first, len, wide).expect("Sobol's");
+                for s in first..first + len as u32 {
+                    let mut a = Sampler::new(SamplerKind::Sobol, 11, 5, s, 64);
+                    let row = &ahead[(s - first) as usize];
+                    let mut c = Sampler::with_ahead(SamplerKind::Sobol, &streams, s, 64, row);
+                    for d in 0..SEEDED_DIMENSIONS {
+                        let (x, z) = (a.next_2d(), c.next_2d());
+                        assert_eq!(x.to_array(), z.to_array(), "{first} {len} {wide} {s} {d}");
+                    }
+                }
+            }
+        }
+    }
     // The seeds are hashed for Sobol only, and differ from dimension to dimension.
     let sobol = PixelStreams::new(SamplerKind::Sobol, 11, 5, 64);
     assert_eq!(sobol.seeded, SEEDED_DIMENSIONS as u32);
