@@ -18,6 +18,7 @@ use glam::{Vec2, Vec3};
 use lightlab::bsdf::{Bsdf, Microfacet, MicrofacetType};
 use lightlab::sampling::Rng32;
 use lightlab::sampling::chi2::{Chi2Config, Domain, chi2_test};
+use rayon::prelude::*;
 
 /// Where lost and Dirac samples go.
 const MARKER: Vec3 = Vec3::NEG_Z;
@@ -117,36 +118,37 @@ fn every_bsdf_passes_chi_square() {
         })
         .collect();
     let alpha = sidak_alpha(rows.len());
-    let mut failures = Vec::new();
-    for (i, (case, angle, domain_name, space, domain)) in rows.iter().enumerate() {
-        let w = w_out(*angle);
-        let name = format!("{}-{angle}-{domain_name}", case.name);
-        let config = Chi2Config::new(domain, SAMPLES, SEED + i as u64);
-        let mut draw = test_sample(case, w);
-        let report = match space {
-            Space::Direction => chi2_test(domain, &mut draw, &test_pdf(case, w), &config),
-            Space::HalfVector => {
-                let mut sample = |rng: &mut Rng32| {
-                    let (w_in, _) = draw(rng);
-                    let h = if w_in == MARKER {
-                        MARKER
-                    } else {
-                        half_vector(w_in, w)
+    let failures: Vec<String> = rows
+        .par_iter()
+        .enumerate()
+        .filter_map(|(i, (case, angle, domain_name, space, domain))| {
+            let w = w_out(*angle);
+            let name = format!("{}-{angle}-{domain_name}", case.name);
+            let config = Chi2Config::new(domain, SAMPLES, SEED + i as u64);
+            let mut draw = test_sample(case, w);
+            let report = match space {
+                Space::Direction => chi2_test(domain, &mut draw, &test_pdf(case, w), &config),
+                Space::HalfVector => {
+                    let mut sample = |rng: &mut Rng32| {
+                        let (w_in, _) = draw(rng);
+                        let h = if w_in == MARKER {
+                            MARKER
+                        } else {
+                            half_vector(w_in, w)
+                        };
+                        (h, half_vector_pdf(case, w, h))
                     };
-                    (h, half_vector_pdf(case, w, h))
-                };
-                chi2_test(
-                    domain,
-                    &mut sample,
-                    &|h| half_vector_pdf(case, w, h),
-                    &config,
-                )
-            }
-        };
-        if let Err(e) = judge(&name, &report, alpha) {
-            failures.push(e);
-        }
-    }
+                    chi2_test(
+                        domain,
+                        &mut sample,
+                        &|h| half_vector_pdf(case, w, h),
+                        &config,
+                    )
+                }
+            };
+            judge(&name, &report, alpha).err()
+        })
+        .collect();
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 

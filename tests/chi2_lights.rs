@@ -15,6 +15,7 @@ use lightlab::geometry::Shape;
 use lightlab::light::{Light, LightSampling, ShadingPoint};
 use lightlab::sampling::chi2::{Chi2Config, Domain, chi2_test};
 use lightlab::sampling::{Rng32, Uniform};
+use rayon::prelude::*;
 
 const SAMPLES: usize = 100_000;
 
@@ -57,7 +58,7 @@ fn every_light_strategy_passes_chi_square() {
         .collect();
     let alpha = sidak_alpha(cases.len());
     let failures: Vec<String> = cases
-        .iter()
+        .par_iter()
         .filter_map(|&(shape, strategy, place)| {
             let name = format!("{shape:?}-{strategy}-{place:?}");
             let at = placement(shape, place);

@@ -1,7 +1,9 @@
 //! The chi-square harness for tests: runs `lightlab::sampling::chi2` on a table of cases
 //! (the registry, or any closures), corrects the significance for the number of cases
 //! (Šidák), prints every p-value, and on failure writes the observed and expected
-//! histograms to `target/chi2-failures/NAME.txt`, naming the file in the panic.
+//! histograms to `target/chi2-failures/NAME.txt`, naming the file in the panic. Cases
+//! run in parallel (rayon), each on its own fixed stream, so results do not depend on
+//! the order; only the printed lines interleave.
 //!
 //! Later suites (BSDFs, lights, environment maps) call [`check`] with their own sample
 //! and pdf closures and a [`Domain`]; see `tests/chi2_warps.rs` for the pattern.
@@ -12,6 +14,7 @@ use glam::{Vec2, Vec3};
 use lightlab::sampling::Rng32;
 use lightlab::sampling::chi2::{Chi2Config, Chi2Report, Domain, chi2_test, integrate_pdf};
 use lightlab::sampling::registry::{self, Draw, Entry, Family};
+use rayon::prelude::*;
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 
 /// Family-wise significance level of a table of tests.
@@ -111,7 +114,7 @@ pub fn chi2_all(family: Family) {
     let alpha = sidak_alpha(table.len());
     // One stream per row, so rows that are affine images of each other stay independent.
     let failures = table
-        .iter()
+        .par_iter()
         .enumerate()
         .filter_map(|(i, e)| judge(&e.name, &e.chi2(SEED + i as u64), alpha).err())
         .collect();
@@ -122,7 +125,7 @@ pub fn chi2_all(family: Family) {
 /// around peaked lobes leave out up to 10⁻⁴ of the mass by design).
 pub fn integrates_to_one(family: Family) {
     let failures = entries(family)
-        .iter()
+        .par_iter()
         .filter_map(|e| {
             let resolution = e.chi2_config(SEED).resolution;
             match integrate_pdf(&e.domain, &*e.pdf, resolution) {

@@ -20,13 +20,13 @@ pub enum Family {
 }
 
 /// A sampler drawing (value, pdf) from a stream of uniform numbers.
-pub type StreamFn = Box<dyn Fn(&mut Rng32) -> (Vec3, f32)>;
+pub type StreamFn = Box<dyn Fn(&mut Rng32) -> (Vec3, f32) + Send + Sync>;
 
 /// How an entry turns uniform numbers into a sample (value, pdf).
 pub enum Draw {
     /// A deterministic map of u ∈ [0, 1)²; 1D entries use u.x (and u.y when they take two
     /// numbers).
-    Square(Box<dyn Fn(Vec2) -> (Vec3, f32)>),
+    Square(Box<dyn Fn(Vec2) -> (Vec3, f32) + Send + Sync>),
     /// A sampler that consumes a variable number of uniform numbers (rejection).
     Stream(StreamFn),
 }
@@ -44,9 +44,9 @@ pub struct Entry {
     /// The draw.
     pub draw: Draw,
     /// The density the draw claims, in the domain's measure.
-    pub pdf: Box<dyn Fn(Vec3) -> f32>,
+    pub pdf: Box<dyn Fn(Vec3) -> f32 + Send + Sync>,
     /// The inverse map (value ↦ u) where one exists.
-    pub inverse: Option<Box<dyn Fn(Vec3) -> Vec2>>,
+    pub inverse: Option<Box<dyn Fn(Vec3) -> Vec2 + Send + Sync>>,
     /// Samples for the chi-square test (fewer for expensive samplers).
     pub samples: usize,
     /// Histogram cells, when they should line up with the table's bins.
@@ -83,7 +83,7 @@ impl Entry {
 }
 
 /// Shorthand for entry constructors: a boxed closure.
-fn boxed<A, R>(f: impl Fn(A) -> R + 'static) -> Box<dyn Fn(A) -> R> {
+fn boxed<A, R>(f: impl Fn(A) -> R + Send + Sync + 'static) -> Box<dyn Fn(A) -> R + Send + Sync> {
     Box::new(f)
 }
 

@@ -17,7 +17,7 @@ fn entry(
     description: &str,
     domain: Domain,
     draw: Draw,
-    pdf: Box<dyn Fn(Vec3) -> f32>,
+    pdf: Box<dyn Fn(Vec3) -> f32 + Send + Sync>,
 ) -> Entry {
     Entry {
         name: name.into(),
@@ -32,16 +32,16 @@ fn entry(
     }
 }
 
-fn with_inverse(mut e: Entry, inverse: Box<dyn Fn(Vec3) -> Vec2>) -> Entry {
+fn with_inverse(mut e: Entry, inverse: Box<dyn Fn(Vec3) -> Vec2 + Send + Sync>) -> Entry {
     e.inverse = Some(inverse);
     e
 }
 
-fn square(f: impl Fn(Vec2) -> (Vec3, f32) + 'static) -> Draw {
+fn square(f: impl Fn(Vec2) -> (Vec3, f32) + Send + Sync + 'static) -> Draw {
     Draw::Square(boxed(f))
 }
 
-fn stream(f: impl Fn(&mut Rng32) -> (Vec3, f32) + 'static) -> Draw {
+fn stream(f: impl Fn(&mut Rng32) -> (Vec3, f32) + Send + Sync + 'static) -> Draw {
     Draw::Stream(Box::new(f))
 }
 
