@@ -7,12 +7,11 @@
 
 use glam::Vec2;
 
+mod chunk;
 mod strata;
 
 use super::rng::{HASH_START, Rng32, hash_more, hash_words, mix64};
-use super::sobol::{
-    CHUNK_LANES, SobolSeed, chunk_is_wide, sobol_1d_seeded, sobol_2d_chunk, sobol_2d_seeded,
-};
+use super::sobol::{SobolSeed, sobol_1d_seeded, sobol_2d_seeded};
 use strata::EqualAreaRows;
 pub use strata::{equal_area_cell, permute};
 
@@ -42,35 +41,56 @@ pub use crate::settings::SamplerKind;
 /// later samples fall back to independent numbers.
 pub const SOBOL_MAX_SAMPLES: u32 = 1 << 16;
 
-/// Dimensions whose Sobol seeds a [`PixelStreams`] hashes once per pixel, and whose
-/// points the camera packets draw for a chunk of samples at once
-/// ([`PixelStreams::chunk_ahead`]): the first four, which the default estimate draws
-/// (film position, light choice, light point, BSDF direction). Later dimensions are
-/// hashed and drawn per sample.
+/// Dimensions whose Sobol seeds, or stratified keys, a [`PixelStreams`] hashes once per
+/// pixel, and whose points (Sobol) or cells (stratified) the camera packets draw for a
+/// chunk of samples at once ([`PixelStreams::chunk_points`],
+/// [`PixelStreams::chunk_cells`]): the first four, which the
+/// default estimate draws (film position, light choice, light point, BSDF direction).
+/// Later dimensions are hashed and drawn per sample.
 pub const SEEDED_DIMENSIONS: usize = 4;
 
 /// The part of a pixel's sampler streams that every sample of the pixel shares: its key;
 /// for `sobol`, the hashed seeds of its first [`SEEDED_DIMENSIONS`] dimensions (each
 /// dimension's seed depends on the pixel alone, Burley 2020 §4), from which
-/// [`PixelStreams::chunk_ahead`] draws a chunk's points without hashing them again for
-/// every sample; for `stratified`, the strata's layout for the
-/// render's sample count. [`Sampler::for_streams`], and [`Sampler::with_ahead`] with its
-/// chunk's points, draw the same numbers as [`Sampler::for_pixel`] with the same key.
+/// [`PixelStreams::chunk_points`] draws a chunk's points without hashing them again for
+/// every sample; for `stratified`, the strata's layout for the render's sample count
+/// and the permutation keys of the same dimensions, from which
+/// [`PixelStreams::chunk_cells`] draws a chunk's cells. [`Sampler::for_streams`], and
+/// [`Sampler::with_points`] and [`Sampler::with_cells`] with their chunk's, draw the
+/// same numbers as [`Sampler::for_pixel`] with the same key.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct PixelStreams {
     key: u64,
     /// The hash of a sample's PCG stream with the pixel's key folded in
     /// (`hash_more(HASH_START, key)`): each sample adds only its index.
     sample_hash: u64,
+    /// [`SEEDED_DIMENSIONS`] where `sobol` or `cell_keys` holds them, else 0.
     seeded: u32,
     sobol: [SobolSeed; SEEDED_DIMENSIONS],
     /// The strata of `spp` samples (`stratified`; `n` = 0, no layout, otherwise).
     rows: EqualAreaRows,
+    /// The permutation key of each seeded dimension (`stratified`), as
+    /// [`Sampler::stratified_cell`] derives it from the pixel's key.
+    cell_keys: [u32; SEEDED_DIMENSIONS],
 }
 
 /// The Sobol points of a sample's first [`SEEDED_DIMENSIONS`] dimensions, which its
-/// chunk drew together ([`PixelStreams::chunk_ahead`]).
-pub type Ahead = [Vec2; SEEDED_DIMENSIONS];
+/// chunk drew together ([`PixelStreams::chunk_points`]).
+pub type Points = [Vec2; SEEDED_DIMENSIONS];
+
+/// The stratified cells of a sample's first [`SEEDED_DIMENSIONS`] dimensions (its index
+/// permuted in each), which its chunk drew together ([`PixelStreams::chunk_cells`]). The
+/// jitter inside each cell still comes from the sample's PCG stream as it is drawn: a
+/// 1D and a 2D draw take one and two numbers of it.
+pub type Cells = [u32; SEEDED_DIMENSIONS];
+
+/// What [`Sampler::build`] is given of a sample's first dimensions.
+#[derive(Clone, Copy)]
+enum Ahead<'a> {
+    Nothing,
+    Points(&'a Points),
+    Cells(&'a Cells),
+}
 
 impl PixelStreams {
     /// The streams of pixel `pixel` (a linear index) under `seed` for a sampler of `kind`
@@ -78,20 +98,27 @@ impl PixelStreams {
     pub fn new(kind: SamplerKind, seed: u64, pixel: u64, spp: u32) -> PixelStreams {
         let key = Sampler::pixel_key(seed, pixel);
         let sobol = kind == SamplerKind::Sobol;
+        let strata = kind == SamplerKind::Stratified;
+        let keys: [u32; SEEDED_DIMENSIONS] = match sobol || strata {
+            true => std::array::from_fn(|d| dimension_key(key, d as u32) as u32),
+            false => [0; SEEDED_DIMENSIONS],
+        };
         PixelStreams {
-            rows: if kind == SamplerKind::Stratified {
+            rows: if strata {
                 EqualAreaRows::new(spp.max(1))
             } else {
                 EqualAreaRows::default()
             },
-            seeded: if sobol { SEEDED_DIMENSIONS as u32 } else { 0 },
-            sobol: std::array::from_fn(|d| {
-                if sobol {
-                    SobolSeed::new(dimension_key(key, d as u32) as u32)
-                } else {
-                    SobolSeed::default()
-                }
+            seeded: if sobol || strata {
+                SEEDED_DIMENSIONS as u32
+            } else {
+                0
+            },
+            sobol: std::array::from_fn(|d| match sobol {
+                true => SobolSeed::new(keys[d]),
+                false => SobolSeed::default(),
             }),
+            cell_keys: if strata { keys } else { [0; SEEDED_DIMENSIONS] },
             ..PixelStreams::keyed(key)
         }
     }
@@ -105,37 +132,6 @@ impl PixelStreams {
             sample_hash: hash_more(HASH_START, key),
             ..PixelStreams::default()
         }
-    }
-
-    /// The Sobol points of the first [`SEEDED_DIMENSIONS`] dimensions of samples
-    /// `first`, `first` + 1, … (`len` ≤ [`CHUNK_LANES`] of them), for
-    /// [`Sampler::with_ahead`]: computed together ([`sobol_2d_chunk`]) where that pays
-    /// (a whole chunk, or two samples and more where the lanes are AVX2's), else sample
-    /// by sample from the pixel's seeds. `None` unless the streams are Sobol's and the
-    /// first sample has Sobol points (past [`SOBOL_MAX_SAMPLES`] samples fall back to
-    /// independent numbers).
-    #[inline]
-    pub fn chunk_ahead(&self, first: u32, len: usize) -> Option<[Ahead; CHUNK_LANES]> {
-        self.chunk_ahead_in(first, len, chunk_is_wide())
-    }
-
-    /// [`PixelStreams::chunk_ahead`] with the lanes' width given (`wide`: AVX2's).
-    #[inline(always)]
-    fn chunk_ahead_in(&self, first: u32, len: usize, wide: bool) -> Option<[Ahead; CHUNK_LANES]> {
-        if self.seeded != SEEDED_DIMENSIONS as u32 || first >= SOBOL_MAX_SAMPLES {
-            return None;
-        }
-        if len >= CHUNK_LANES || (len >= 2 && wide) {
-            return Some(sobol_2d_chunk(first, &self.sobol));
-        }
-        // Sample by sample, up to Sobol's last index (later samples take none).
-        let len = len.min((SOBOL_MAX_SAMPLES - first) as usize);
-        let mut ahead = [Ahead::default(); CHUNK_LANES];
-        for (l, points) in ahead.iter_mut().enumerate().take(len) {
-            let index_rev = first.wrapping_add(l as u32).reverse_bits();
-            *points = std::array::from_fn(|d| sobol_2d_seeded(index_rev, &self.sobol[d]));
-        }
-        Some(ahead)
     }
 
     /// The pixel's key ([`Sampler::pixel_key`]).
@@ -162,17 +158,21 @@ pub struct Sampler {
     /// `sample_index.reverse_bits()` (Sobol only: its points take the reversed index, so
     /// it is reversed once per sample rather than once per dimension).
     index_rev: u32,
-    spp: u32,
     dimension: u32,
     rng: Rng32,
-    /// The 2D stratification of `spp` cells and the permutation's mask (stratified
-    /// sampler only).
+    /// The 2D stratification of the sample count's cells (its `n`) and the
+    /// permutation's mask (stratified sampler only).
     rows: EqualAreaRows,
     /// The Sobol points of the first `pointed` dimensions, drawn ahead with the rest of
-    /// their chunk ([`PixelStreams::chunk_ahead`]); `pointed` is 0 unless
-    /// [`Sampler::with_ahead`] made a Sobol sampler.
+    /// their chunk ([`PixelStreams::chunk_points`]); `pointed` is 0 unless
+    /// [`Sampler::with_points`] made a Sobol sampler.
     pointed: u32,
     points: [Vec2; SEEDED_DIMENSIONS],
+    /// The stratified cells of the first `celled` dimensions, drawn ahead in the same
+    /// way ([`PixelStreams::chunk_cells`]); `celled` is 0 unless [`Sampler::with_cells`]
+    /// made a stratified sampler.
+    celled: u32,
+    cells: [u32; SEEDED_DIMENSIONS],
 }
 
 impl Sampler {
@@ -197,7 +197,7 @@ impl Sampler {
 
     /// [`Sampler::for_pixel`] for the pixel whose streams are `streams` (made for the
     /// same `kind`). Every Sobol dimension is hashed as it is drawn (three hashes each):
-    /// a hot path takes [`Sampler::with_ahead`], which uses the pixel's seeds.
+    /// a hot path takes [`Sampler::with_points`], which uses the pixel's seeds.
     #[inline]
     pub fn for_streams(
         kind: SamplerKind,
@@ -205,21 +205,35 @@ impl Sampler {
         sample_index: u32,
         spp: u32,
     ) -> Sampler {
-        Self::build(kind, streams, sample_index, spp, None)
+        Self::build(kind, streams, sample_index, spp, Ahead::Nothing)
     }
 
     /// [`Sampler::for_streams`] with what its first [`SEEDED_DIMENSIONS`] dimensions
-    /// draw given: `ahead`, this sample's lane of its chunk's
-    /// [`PixelStreams::chunk_ahead`] (the same numbers, computed together).
+    /// draw given: `points`, this sample's row of its chunk's
+    /// [`PixelStreams::chunk_points`] (the same numbers, computed together).
     #[inline]
-    pub fn with_ahead(
+    pub fn with_points(
         kind: SamplerKind,
         streams: &PixelStreams,
         sample_index: u32,
         spp: u32,
-        ahead: &Ahead,
+        points: &Points,
     ) -> Sampler {
-        Self::build(kind, streams, sample_index, spp, Some(ahead))
+        Self::build(kind, streams, sample_index, spp, Ahead::Points(points))
+    }
+
+    /// [`Sampler::for_streams`] with the cells of its first [`SEEDED_DIMENSIONS`]
+    /// dimensions given: `cells`, this sample's row of its chunk's
+    /// [`PixelStreams::chunk_cells`] (the same cells, computed together).
+    #[inline]
+    pub fn with_cells(
+        kind: SamplerKind,
+        streams: &PixelStreams,
+        sample_index: u32,
+        spp: u32,
+        cells: &Cells,
+    ) -> Sampler {
+        Self::build(kind, streams, sample_index, spp, Ahead::Cells(cells))
     }
 
     #[inline(always)]
@@ -228,13 +242,29 @@ impl Sampler {
         streams: &PixelStreams,
         sample_index: u32,
         spp: u32,
-        ahead: Option<&Ahead>,
+        ahead: Ahead<'_>,
     ) -> Sampler {
         let pixel_key = streams.key;
         let kind = match kind {
             SamplerKind::Sobol if sample_index >= SOBOL_MAX_SAMPLES => SamplerKind::Independent,
             SamplerKind::Stratified if sample_index >= spp => SamplerKind::Independent,
             k => k,
+        };
+        // The pixel's layout (and its chunk's cells) where its streams have one for
+        // this count.
+        let laid_out = kind == SamplerKind::Stratified && streams.rows.n == spp.max(1);
+        // The first dimensions' points (Sobol) or cells (stratified) from the chunk,
+        // where given; otherwise every dimension is hashed as it is drawn.
+        let none = (
+            0,
+            [Vec2::ZERO; SEEDED_DIMENSIONS],
+            0,
+            [0; SEEDED_DIMENSIONS],
+        );
+        let (pointed, points, celled, cells) = match ahead {
+            Ahead::Points(p) if kind == SamplerKind::Sobol => (streams.seeded, *p, 0, none.3),
+            Ahead::Cells(c) if laid_out => (0, none.1, streams.seeded, *c),
+            _ => none,
         };
         Sampler {
             kind,
@@ -245,10 +275,8 @@ impl Sampler {
             } else {
                 0
             },
-            spp: spp.max(1),
             rows: match kind {
-                // The pixel's layout where its streams have one for this count.
-                SamplerKind::Stratified if streams.rows.n == spp.max(1) => streams.rows,
+                _ if laid_out => streams.rows,
                 SamplerKind::Stratified => EqualAreaRows::new(spp.max(1)),
                 _ => EqualAreaRows::UNUSED,
             },
@@ -261,13 +289,10 @@ impl Sampler {
                 // hash_words(&[pixel_key, sample_index]), the key folded in already.
                 Rng32::new(hash_more(streams.sample_hash, sample_index as u64))
             },
-            // Sobol's first dimensions from the chunk's points, where given (otherwise
-            // every dimension is hashed as it is drawn).
-            pointed: match ahead {
-                Some(_) if kind == SamplerKind::Sobol => streams.seeded,
-                _ => 0,
-            },
-            points: ahead.copied().unwrap_or_default(),
+            pointed,
+            points,
+            celled,
+            cells,
         }
     }
 
@@ -283,8 +308,16 @@ impl Sampler {
         key
     }
 
-    /// The jittered stratum of this sample in a 1D or 2D pattern of `spp` cells.
+    /// The stratum of this sample in a 1D or 2D pattern of the sample count's cells
+    /// (drawn ahead for the first `celled` dimensions).
+    #[inline]
     fn stratified_cell(&mut self) -> u32 {
+        let d = self.dimension;
+        if d < self.celled {
+            self.dimension = d + 1;
+            // d < celled ≤ SEEDED_DIMENSIONS: the mask only spares a bounds check.
+            return self.cells[d as usize & (SEEDED_DIMENSIONS - 1)];
+        }
         let key = self.dimension_key();
         self.rows.permute(self.sample_index, key as u32)
     }
@@ -331,7 +364,7 @@ impl Sampler {
             SamplerKind::Stratified => {
                 let cell = self.stratified_cell();
                 let jitter = self.rng.next_f32();
-                ((cell as f32 + jitter) / self.spp as f32).min(ONE_MINUS_EPSILON)
+                ((cell as f32 + jitter) / self.rows.n as f32).min(ONE_MINUS_EPSILON)
             }
             SamplerKind::Sobol => {
                 // Padding by reseeding (Burley 2020 §4): dimension 0 of a fresh

@@ -32,6 +32,7 @@
 //! without a tree ([`Geometry::is_flat`](crate::geometry::Geometry::is_flat)), its camera
 //! rays are then traced one at a time.
 
+mod ahead;
 mod order;
 
 use std::cell::RefCell;
@@ -49,10 +50,10 @@ use crate::geometry::{Ray, SurfaceHit};
 use crate::integrator::{Estimator, OptimalPixel};
 use crate::light::LightLanes;
 use crate::math::Spectrum;
-use crate::sampling::sampler::Ahead;
 use crate::sampling::sobol::CHUNK_LANES;
 use crate::sampling::{Sampler, SamplerKind, Uniform};
 use crate::scene::{Camera, Scene};
+use ahead::{DrawsAhead, Nothing, SobolPoints, StrataCells};
 pub(super) use order::{BLOCK_HEIGHT, BLOCK_WIDTH, CHUNK};
 use order::{BlockPixel, each_sample, sample_order};
 
@@ -70,10 +71,6 @@ pub(super) trait TileSamples: Sync {
         sink: &mut impl FnMut(u32, u32, Vec2, Spectrum),
     );
 }
-
-/// The Sobol points of a chunk's samples of one pixel for their first dimensions
-/// ([`PixelStreams::chunk_ahead`](crate::sampling::sampler::PixelStreams::chunk_ahead)).
-type ChunkAhead = [Ahead; CHUNK_LANES];
 
 /// A sample at a time: `f(x, y, pixel key, sample index)` gives the film position and
 /// radiance (as the spatial-reuse rounds hand over their finished samples).
@@ -143,20 +140,25 @@ impl TileSamples for CameraPackets<'_> {
         seed_width: (u64, u32),
         sink: &mut impl FnMut(u32, u32, Vec2, Spectrum),
     ) {
-        // Compiled twice, so that the other samplers' packet loop computes no points
-        // ahead (their draws still test the sampler's `pointed`, which is 0).
+        // Compiled once per sampler, each computing only its own numbers ahead (the
+        // independent sampler's draws still test its `pointed`, which is 0).
         match self.settings.sampler {
-            SamplerKind::Sobol => self.run_sampled::<true>(tile, samples, seed_width, sink),
-            _ => self.run_sampled::<false>(tile, samples, seed_width, sink),
+            SamplerKind::Sobol => self.run_sampled::<SobolPoints>(tile, samples, seed_width, sink),
+            SamplerKind::Stratified => {
+                self.run_sampled::<StrataCells>(tile, samples, seed_width, sink)
+            }
+            SamplerKind::Independent => {
+                self.run_sampled::<Nothing>(tile, samples, seed_width, sink)
+            }
         }
     }
 }
 
 impl CameraPackets<'_> {
-    /// [`TileSamples::run`], with the Sobol points of every chunk's first dimensions
-    /// computed together where `AHEAD` ([`ChunkAhead`]).
+    /// [`TileSamples::run`], with what every chunk's first dimensions draw computed
+    /// together as `A` does.
     #[inline(always)]
-    fn run_sampled<const AHEAD: bool>(
+    fn run_sampled<A: DrawsAhead>(
         &self,
         tile: Tile,
         samples: Range<u32>,
@@ -178,17 +180,13 @@ impl CameraPackets<'_> {
             sample_order(tile, samples, seed_width, kind, |chunk, block| {
                 let misses = self.misses(block);
                 if misses && self.scene.environment.is_none() {
-                    return self.dark::<AHEAD>(chunk, block, sink);
+                    return self.dark::<A>(chunk, block, sink);
                 }
                 for pixel @ (x, y, streams) in block {
-                    let points = if AHEAD {
-                        streams.chunk_ahead(chunk.start, chunk.len())
-                    } else {
-                        None
-                    };
+                    let rows = A::chunk(streams, chunk.start, chunk.len());
                     for s in chunk.clone() {
-                        let row = points.as_ref().map(|p| &p[(s - chunk.start) as usize]);
-                        let mut p = self.start(pixel, s, row);
+                        let row = rows.as_ref().map(|r| &r[(s - chunk.start) as usize]);
+                        let mut p = self.start::<A>(pixel, s, row);
                         let hit = if misses {
                             None
                         } else {
@@ -208,28 +206,21 @@ impl CameraPackets<'_> {
         let mut traced: Vec<(Pending, Option<SurfaceHit>)> =
             Vec::with_capacity(CHUNK as usize * PACKET);
         let mut stages = Stages::default();
-        let mut points: [Option<ChunkAhead>; PACKET] = [None; PACKET];
+        let mut rows: [Option<[A::Row; CHUNK_LANES]>; PACKET] = [None; PACKET];
         sample_order(tile, samples, seed_width, kind, |chunk, block| {
             let misses = self.misses(block);
             if misses && self.scene.environment.is_none() {
-                return self.dark::<AHEAD>(chunk, block, sink);
+                return self.dark::<A>(chunk, block, sink);
             }
-            // The Sobol points of the chunk's first dimensions, pixel by pixel.
-            if AHEAD {
-                for (p, (_, _, streams)) in points.iter_mut().zip(block) {
-                    *p = streams.chunk_ahead(chunk.start, chunk.len());
-                }
+            // What the chunk's first dimensions draw, pixel by pixel.
+            for (r, (_, _, streams)) in rows.iter_mut().zip(block) {
+                *r = A::chunk(streams, chunk.start, chunk.len());
             }
             for s in chunk.clone() {
                 let start = traced.len();
-                let row = (s - chunk.start) as usize;
-                traced.extend(block.iter().zip(&points).map(|(pixel, p)| {
-                    let ahead = if AHEAD {
-                        p.as_ref().map(|p| &p[row])
-                    } else {
-                        None
-                    };
-                    (self.start(pixel, s, ahead), None)
+                let l = (s - chunk.start) as usize;
+                traced.extend(block.iter().zip(&rows).map(|(pixel, r)| {
+                    (self.start::<A>(pixel, s, r.as_ref().map(|r| &r[l])), None)
                 }));
                 // A block that surely misses leaves every hit `None` (the environment's
                 // light comes from `radiance`).
@@ -259,12 +250,12 @@ impl CameraPackets<'_> {
         });
     }
 
-    /// Sample `s` of `pixel` (its first numbers `ahead` if computed ahead): its stream,
-    /// after the film position it draws first, and its camera ray.
+    /// Sample `s` of `pixel` (its row `ahead` of its chunk's numbers drawn ahead, if
+    /// any): its stream, after the film position it draws first, and its camera ray.
     #[inline(always)]
-    fn start(&self, pixel: &BlockPixel, s: u32, ahead: Option<&Ahead>) -> Pending {
+    fn start<A: DrawsAhead>(&self, pixel: &BlockPixel, s: u32, ahead: Option<&A::Row>) -> Pending {
         let (x, y, _) = *pixel;
-        let (sampler, film) = self.film_position(pixel, s, ahead);
+        let (sampler, film) = self.film_position::<A>(pixel, s, ahead);
         Pending {
             x,
             y,
@@ -274,20 +265,17 @@ impl CameraPackets<'_> {
         }
     }
 
-    /// Sample `s` of pixel `(x, y, streams)` (its first numbers `ahead` if computed
-    /// ahead): its stream and the film position it draws first.
+    /// Sample `s` of pixel `(x, y, streams)` (its row `ahead` of its chunk's numbers
+    /// drawn ahead, if any): its stream and the film position it draws first.
     #[inline(always)]
-    fn film_position(
+    fn film_position<A: DrawsAhead>(
         &self,
         (x, y, streams): &BlockPixel,
         s: u32,
-        ahead: Option<&Ahead>,
+        ahead: Option<&A::Row>,
     ) -> (Sampler, Vec2) {
-        let (kind, spp) = (self.settings.sampler, self.settings.spp);
-        let mut sampler = match ahead {
-            Some(a) => Sampler::with_ahead(kind, streams, s, spp, a),
-            None => Sampler::for_streams(kind, streams, s, spp),
-        };
+        let kind = (self.settings.sampler, self.settings.spp);
+        let mut sampler = A::sampler(streams, s, kind, ahead);
         let film = Vec2::new(*x as f32, *y as f32) + sampler.next_2d();
         (sampler, film)
     }
@@ -297,22 +285,21 @@ impl CameraPackets<'_> {
     /// ray brings), and no camera ray is made. The film positions are drawn only where
     /// the sink uses them ([`CameraPackets::positions`]); otherwise each sample goes
     /// with its pixel's centre.
-    fn dark<const AHEAD: bool>(
+    fn dark<A: DrawsAhead>(
         &self,
         chunk: Range<u32>,
         block: &[BlockPixel],
         sink: &mut impl FnMut(u32, u32, Vec2, Spectrum),
     ) {
         for pixel @ (x, y, streams) in block {
-            let points = if AHEAD && self.positions {
-                streams.chunk_ahead(chunk.start, chunk.len())
-            } else {
-                None
+            let rows = match self.positions {
+                true => A::chunk(streams, chunk.start, chunk.len()),
+                false => None,
             };
             for s in chunk.clone() {
                 let film = if self.positions {
-                    let row = points.as_ref().map(|p| &p[(s - chunk.start) as usize]);
-                    self.film_position(pixel, s, row).1
+                    let row = rows.as_ref().map(|r| &r[(s - chunk.start) as usize]);
+                    self.film_position::<A>(pixel, s, row).1
                 } else {
                     Vec2::new(*x as f32 + 0.5, *y as f32 + 0.5)
                 };

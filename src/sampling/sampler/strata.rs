@@ -4,6 +4,7 @@
 use glam::Vec2;
 
 use super::ONE_MINUS_EPSILON;
+use crate::sampling::sobol::CHUNK_LANES;
 
 /// A point jittered inside cell `cell` of `n` equal-area cells that tile the unit square:
 /// ⌊√n⌋ rows, each cut into as many cells as its share of `n`, with row heights
@@ -57,6 +58,91 @@ impl EqualAreaRows {
     pub(super) fn permute(&self, i: u32, seed: u32) -> u32 {
         permute_masked(i, self.n, self.mask, seed)
     }
+
+    /// The cells of samples `first`, `first` + 1, … (`len` ≤ [`CHUNK_LANES`] of them)
+    /// in each dimension whose key is in `keys`: `cells[l][d]` is
+    /// [`EqualAreaRows::permute`]`(first + l, keys[d])` for the samples below `n`. The
+    /// others, which draw independent numbers instead, get unspecified cells (0 past
+    /// `len`): the cycle walk of a permutation may never end from an index ≥ n, whose
+    /// cycle under the hash need not enter 0..n. In AVX2 lanes where `wide` (the
+    /// processor has AVX2: see [`chunk_is_wide`](crate::sampling::sobol::chunk_is_wide))
+    /// and `n` is a power of two, the usual sample counts, whose permutation takes one
+    /// round of the hash and no walk; index by index otherwise.
+    #[inline]
+    pub(super) fn permute_chunk<const D: usize>(
+        &self,
+        first: u32,
+        len: usize,
+        keys: &[u32; D],
+        wide: bool,
+    ) -> [[u32; D]; CHUNK_LANES] {
+        #[cfg(target_arch = "x86_64")]
+        if wide && len >= 2 && self.n & self.mask == 0 {
+            // SAFETY: `wide` says the processor has AVX2.
+            return unsafe { permute_chunk_avx2(first, self.mask, keys) };
+        }
+        let _ = wide;
+        let mut cells = [[0; D]; CHUNK_LANES];
+        for (l, row) in cells.iter_mut().enumerate().take(len) {
+            let i = first.wrapping_add(l as u32);
+            if i < self.n {
+                *row = std::array::from_fn(|d| self.permute(i, keys[d]));
+            }
+        }
+        cells
+    }
+}
+
+/// [`EqualAreaRows::permute_chunk`] for a power of two n = `w` + 1 (or n = 1, `w` = 0),
+/// eight indices in the u32 lanes of an AVX2 register: [`kensler_hash`]'s steps, the
+/// key broadcast, then the remainder as a mask.
+///
+/// # Safety
+///
+/// The processor must have AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn permute_chunk_avx2<const D: usize>(
+    first: u32,
+    w: u32,
+    keys: &[u32; D],
+) -> [[u32; D]; CHUNK_LANES] {
+    use std::arch::x86_64::*;
+    let splat = |v: u32| _mm256_set1_epi32(v as i32);
+    let mask = splat(w);
+    let index = _mm256_add_epi32(splat(first), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+    let mut cells = [[0; D]; CHUNK_LANES];
+    for (d, &seed) in keys.iter().enumerate() {
+        let xor = |i: __m256i, v: u32| _mm256_xor_si256(i, splat(v));
+        let mul = |i: __m256i, v: u32| _mm256_mullo_epi32(i, splat(v));
+        // i ^= (i & w) >> k, the hash's folds of the bits kept.
+        let fold = |i: __m256i, k: u32| {
+            _mm256_xor_si256(i, _mm256_srlv_epi32(_mm256_and_si256(i, mask), splat(k)))
+        };
+        let mut i = mul(xor(index, seed), 0xe170_893d);
+        i = xor(i, seed >> 16);
+        i = fold(i, 4);
+        i = mul(xor(i, seed >> 8), 0x0929_eb3f);
+        i = xor(i, seed >> 23);
+        i = fold(i, 1);
+        i = mul(mul(i, 1 | seed >> 27), 0x6935_fa69);
+        i = fold(i, 11);
+        i = mul(i, 0x74dc_b303);
+        i = fold(i, 2);
+        i = mul(i, 0x9e50_1cc3);
+        i = fold(i, 2);
+        i = _mm256_and_si256(mul(i, 0xc860_a3df), mask);
+        i = _mm256_xor_si256(i, _mm256_srli_epi32::<5>(i));
+        // Below n already (n = w + 1): no walk; then (i + seed) mod n as a mask.
+        i = _mm256_and_si256(_mm256_add_epi32(i, splat(seed)), mask);
+        let mut lanes = [0u32; CHUNK_LANES];
+        // SAFETY: the array holds eight u32, an unaligned store's width.
+        unsafe { _mm256_storeu_si256(lanes.as_mut_ptr().cast(), i) };
+        for (row, &cell) in cells.iter_mut().zip(&lanes) {
+            row[d] = cell;
+        }
+    }
+    cells
 }
 
 /// [`equal_area_cell`] with the layout given: `base` cells per row, the first `extra`

@@ -3,6 +3,7 @@
 
 use super::strata::kensler_hash;
 use super::*;
+use crate::sampling::sobol::{CHUNK_LANES, chunk_is_wide};
 
 #[test]
 fn permute_is_a_bijection() {
@@ -59,6 +60,47 @@ fn permute_is_kenslers() {
     }
 }
 
+/// A chunk's cells, in AVX2 lanes (where this processor has them) and index by index,
+/// are [`EqualAreaRows::permute`]'s, for powers of two (which take the lanes), other
+/// counts and one sample, near the count's end; and a chunk at or past the count
+/// returns (a cycle walk from an index ≥ n may never end, so none is started: this test
+/// hung before that).
+#[test]
+fn chunk_cells_are_the_permutation() {
+    let keys = [0u32, 1, 0x1234_5678, u32::MAX];
+    for n in [
+        1u32,
+        2,
+        3,
+        8,
+        16,
+        64,
+        72,
+        100,
+        256,
+        1 << 12,
+        1 << 20,
+        u32::MAX,
+    ] {
+        let rows = EqualAreaRows::new(n);
+        for first in [0u32, 1, 8, n / 2, n.wrapping_sub(3), n, u32::MAX - 7] {
+            for len in [1, 2, 5, CHUNK_LANES] {
+                for wide in [false, chunk_is_wide()] {
+                    let cells = rows.permute_chunk(first, len, &keys, wide);
+                    for (l, row) in cells.iter().enumerate().take(len) {
+                        let i = first.wrapping_add(l as u32);
+                        if i >= n {
+                            continue;
+                        }
+                        let expected = keys.map(|k| rows.permute(i, k));
+                        assert_eq!(*row, expected, "n {n} first {first} lane {l} {wide}");
+                    }
+                }
+            }
+        }
+    }
+}
+
 #[test]
 fn equal_area_cells_cover_each_cell_once() {
     for n in [1u32, 2, 3, 5, 8, 16, 17] {
@@ -107,18 +149,24 @@ fn streams_draw_what_the_key_draws() {
                 // (in lanes), of three samples (in lanes where AVX2 is), of one (alone).
                 for len in [CHUNK_LANES as u32, 3, 1] {
                     let first = s - s % len;
-                    let ahead = streams.chunk_ahead(first, len as usize);
-                    let chunked = kind == SamplerKind::Sobol && first < SOBOL_MAX_SAMPLES;
-                    assert_eq!(ahead.is_some(), chunked);
+                    let points = streams.chunk_points(first, len as usize);
+                    let cells = streams.chunk_cells(first, len as usize);
+                    let pointed = kind == SamplerKind::Sobol && first < SOBOL_MAX_SAMPLES;
+                    assert_eq!(points.is_some(), pointed);
+                    assert_eq!(cells.is_some(), kind == SamplerKind::Stratified);
+                    // Cells only for samples within the count, from strata laid out for it.
+                    let celled =
+                        kind == SamplerKind::Stratified && s < spp && laid_out.max(1) == spp.max(1);
                     // A chunk may straddle Sobol's last index: its later samples take none.
                     let sobol = kind == SamplerKind::Sobol && s < SOBOL_MAX_SAMPLES;
-                    let mut c = match &ahead {
-                        Some(a) => {
-                            Sampler::with_ahead(kind, &streams, s, spp, &a[(s - first) as usize])
-                        }
-                        None => Sampler::for_streams(kind, &streams, s, spp),
+                    let row = (s - first) as usize;
+                    let mut c = match (&points, &cells) {
+                        (Some(p), _) => Sampler::with_points(kind, &streams, s, spp, &p[row]),
+                        (_, Some(c)) => Sampler::with_cells(kind, &streams, s, spp, &c[row]),
+                        _ => Sampler::for_streams(kind, &streams, s, spp),
                     };
                     assert_eq!(c.pointed, if sobol { SEEDED_DIMENSIONS as u32 } else { 0 });
+                    assert_eq!(c.celled, if celled { SEEDED_DIMENSIONS as u32 } else { 0 });
                     let mut a = a.clone();
                     let mut b = b.clone();
                     for d in 0..3 * SEEDED_DIMENSIONS {
@@ -137,19 +185,32 @@ fn streams_draw_what_the_key_draws() {
         }
     }
     // Chunks of every length, in lanes and sample by sample (whichever this processor
-    // would take), hand every sample of theirs its own points, up to Sobol's last index.
-    let streams = PixelStreams::new(SamplerKind::Sobol, 11, 5, 64);
-    for first in [0u32, 5, 64, SOBOL_MAX_SAMPLES - 3] {
-        for len in 1..=CHUNK_LANES {
-            for wide in [false, true] {
-                let ahead = streams.chunk_ahead_in(first, len, wide).expect("Sobol's");
-                for s in first..first + len as u32 {
-                    let mut a = Sampler::new(SamplerKind::Sobol, 11, 5, s, 64);
-                    let row = &ahead[(s - first) as usize];
-                    let mut c = Sampler::with_ahead(SamplerKind::Sobol, &streams, s, 64, row);
-                    for d in 0..SEEDED_DIMENSIONS {
-                        let (x, z) = (a.next_2d(), c.next_2d());
-                        assert_eq!(x.to_array(), z.to_array(), "{first} {len} {wide} {s} {d}");
+    // would take), hand every sample of theirs its own points, up to Sobol's last index,
+    // or its own cells, up to the sample count (a power of two, as the lanes need).
+    let firsts = [
+        (SamplerKind::Sobol, [0u32, 5, 64, SOBOL_MAX_SAMPLES - 3]),
+        (SamplerKind::Stratified, [0, 5, 56, 60]),
+    ];
+    for (kind, firsts) in firsts {
+        let streams = PixelStreams::new(kind, 11, 5, 64);
+        for first in firsts {
+            for len in 1..=CHUNK_LANES {
+                for wide in [false, true] {
+                    let points = streams.chunk_points_in(first, len, wide);
+                    let cells = streams.chunk_cells_in(first, len, wide);
+                    for s in first..first + len as u32 {
+                        let mut a = Sampler::new(kind, 11, 5, s, 64);
+                        let row = (s - first) as usize;
+                        let mut c = match (&points, &cells) {
+                            (Some(p), None) => Sampler::with_points(kind, &streams, s, 64, &p[row]),
+                            (None, Some(c)) => Sampler::with_cells(kind, &streams, s, 64, &c[row]),
+                            _ => panic!("{kind:?} draws points or cells ahead"),
+                        };
+                        for d in 0..SEEDED_DIMENSIONS {
+                            let (x, z) = (a.next_2d(), c.next_2d());
+                            let at = format!("{kind:?} {first} {len} {wide} {s} {d}");
+                            assert_eq!(x.to_array(), z.to_array(), "{at}");
+                        }
                     }
                 }
             }
@@ -159,9 +220,14 @@ fn streams_draw_what_the_key_draws() {
     let sobol = PixelStreams::new(SamplerKind::Sobol, 11, 5, 64);
     assert_eq!(sobol.seeded, SEEDED_DIMENSIONS as u32);
     assert_ne!(sobol.sobol[0], sobol.sobol[1]);
-    // The strata's layout is kept for the sample count, for `stratified` only.
+    // The strata's layout and keys are kept for the sample count, for `stratified` only.
     let strata = PixelStreams::new(SamplerKind::Stratified, 11, 5, 64);
-    assert_eq!((strata.seeded, strata.rows.n), (0, 64));
+    assert_eq!(
+        (strata.seeded, strata.rows.n),
+        (SEEDED_DIMENSIONS as u32, 64)
+    );
+    assert_ne!(strata.cell_keys[0], strata.cell_keys[1]);
+    assert_eq!(sobol.cell_keys, [0; SEEDED_DIMENSIONS]);
     assert_eq!(sobol.rows.n, 0);
 }
 
