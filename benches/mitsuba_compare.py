@@ -3,7 +3,7 @@
 one machine: the ratio of samples per second, as issue 13 asks for.
 
     python3 benches/mitsuba_compare.py [--spp N] [--runs R] [--threads T] [--scalar] [--builtins]
-                                       [SCENE.xml ...]
+                                       [--lightlab EXE] [SCENE.xml ...]
 
 With no scene it takes every scene of tests/scenes/. --builtins adds (or, with no scene
 given, takes instead) each built-in scene written out as XML (`lightlab export`, its
@@ -11,7 +11,8 @@ sampler set to `independent`) that Mitsuba 3 can read: those with Phong material
 (Mitsuba 0.6's plugin, which Mitsuba 3 lacks) are listed as skipped. It installs what it
 needs itself: a virtual environment in target/bench-venv with mitsuba, embreex and numpy
 (PyPI), and it points DRJIT_LIBLLVM_PATH at Debian's libLLVM-19.so (`apt-get install
-libllvm19`) so that Mitsuba's vectorised llvm_ad_rgb variant runs. It builds lightlab in release mode first.
+libllvm19`) so that Mitsuba's vectorised llvm_ad_rgb variant runs. It builds lightlab in release mode first,
+unless --lightlab names the binary to time (another build, to compare two against the same peer).
 
 What is timed, per scene and configuration, interleaved over R rounds (the machine drifts
 over minutes, so every configuration sees the same drift), reported as medians:
@@ -134,13 +135,18 @@ def main():
     ap.add_argument("--scalar", action="store_true", help="also time Mitsuba's scalar_rgb variant")
     ap.add_argument("--builtins", action="store_true",
                     help="add the built-in scenes Mitsuba 3 can read, written out as XML")
+    ap.add_argument("--lightlab", metavar="EXE",
+                    help="time this lightlab binary instead of building the release one")
     ap.add_argument("scenes", nargs="*")
     a = ap.parse_args()
     ensure_venv()
     env = llvm_environment()
-    subprocess.run(["cargo", "build", "--release", "--quiet"], cwd=ROOT, check=True)
-    target = os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))
-    exe = os.path.join(target, "release", "lightlab")
+    if a.lightlab:
+        exe = os.path.abspath(a.lightlab)
+    else:
+        subprocess.run(["cargo", "build", "--release", "--quiet"], cwd=ROOT, check=True)
+        target = os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))
+        exe = os.path.join(target, "release", "lightlab")
     if a.builtins:
         scenes = a.scenes + exported_builtins(exe)
     else:

@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::chi2::{SEED, check, sidak_alpha};
+use common::chi2::{SEED, checked, report_all, sidak_alpha};
 use glam::{Mat3, Vec2, Vec3};
 use lightlab::light::environment::{Environment, LatLongImage, SkyParameters, procedural_sky};
 use lightlab::math::Spectrum;
@@ -89,23 +89,17 @@ fn compensated_cases() -> Vec<(&'static str, Environment, bool)> {
 fn environment_sampling_passes_chi_square() {
     let cases = cases();
     let alpha = sidak_alpha(cases.len());
-    let mut failures = Vec::new();
+    let mut verdicts = Vec::new();
     for (name, env, compensate) in &cases {
         let mut sample = |r: &mut Rng32| match env.sample(r.next_2d(), *compensate) {
             Some((w, _, pdf)) => (w, pdf),
             None => (Vec3::NAN, 0.0),
         };
-        if let Err(e) = check(
-            name,
-            &Domain::sphere(),
-            &mut sample,
-            &|w| env.pdf(w, *compensate),
-            1_000_000,
-            alpha,
-        ) {
-            failures.push(e);
-        }
+        let pdf = |w| env.pdf(w, *compensate);
+        let domain = Domain::sphere();
+        verdicts.push(checked(name, &domain, &mut sample, &pdf, 1_000_000, alpha));
     }
+    let failures = report_all(verdicts);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 

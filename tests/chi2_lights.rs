@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::chi2::{SEED, check, sidak_alpha};
+use common::chi2::{SEED, Verdict, checked, report_all, sidak_alpha};
 use common::lights::{
     PLACEMENTS, STRATEGIES, TestLight, TestShape, cap, direction_pdf, light, placement,
 };
@@ -57,16 +57,16 @@ fn every_light_strategy_passes_chi_square() {
         })
         .collect();
     let alpha = sidak_alpha(cases.len());
-    let failures: Vec<String> = cases
+    let verdicts = cases
         .par_iter()
-        .filter_map(|&(shape, strategy, place)| {
+        .map(|&(shape, strategy, place)| {
             let name = format!("{shape:?}-{strategy}-{place:?}");
             let at = placement(shape, place);
             let light = light(shape, strategy);
             let by_area = shape == TestShape::Sphere
                 && matches!(strategy, LightSampling::Area | LightSampling::VisibleArea);
             if by_area {
-                return sphere_points(&name, &light, &at, alpha).err();
+                return sphere_points(&name, &light, &at, alpha);
             }
             let (axis, z_min) = cap(shape, at.p);
             let domain = Domain::cap(axis, z_min);
@@ -77,9 +77,10 @@ fn every_light_strategy_passes_chi_square() {
                 Some(ls) => (ls.w_in, ls.pdf),
                 None => (-axis, 0.0),
             };
-            check(&name, &domain, &mut sample, &pdf, SAMPLES, alpha).err()
+            checked(&name, &domain, &mut sample, &pdf, SAMPLES, alpha)
         })
         .collect();
+    let failures = report_all(verdicts);
     assert!(
         failures.is_empty(),
         "{} case(s) failed:\n{}",
@@ -93,12 +94,7 @@ fn every_light_strategy_passes_chi_square() {
 /// Their samples are histogrammed instead by the unit normal n_y of the sampled point
 /// (over the cap visible from `at`), against the same solid-angle pdf times the
 /// exact Jacobian dω/dn = r²·cos θy/d², which is bounded.
-fn sphere_points(
-    name: &str,
-    light: &TestLight,
-    at: &ShadingPoint,
-    alpha: f64,
-) -> Result<(), String> {
+fn sphere_points(name: &str, light: &TestLight, at: &ShadingPoint, alpha: f64) -> Verdict {
     let Light::Area(area) = &light.light else {
         unreachable!("sphere lights are area lights")
     };
@@ -132,7 +128,7 @@ fn sphere_points(
         // No light: the point straight behind, outside the domain, density 0.
         None => (-axis, 0.0),
     };
-    check(name, &domain, &mut sample, &pdf, SAMPLES, alpha)
+    checked(name, &domain, &mut sample, &pdf, SAMPLES, alpha)
 }
 
 #[test]

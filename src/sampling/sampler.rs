@@ -197,7 +197,8 @@ impl Sampler {
 
     /// [`Sampler::for_pixel`] for the pixel whose streams are `streams` (made for the
     /// same `kind`). Every Sobol dimension is hashed as it is drawn (three hashes each):
-    /// a hot path takes [`Sampler::with_points`], which uses the pixel's seeds.
+    /// a hot path takes [`Sampler::with_points`] (or, stratified, [`Sampler::with_cells`]),
+    /// which use the pixel's seeds (keys).
     #[inline]
     pub fn for_streams(
         kind: SamplerKind,

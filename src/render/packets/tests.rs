@@ -74,8 +74,9 @@ fn packets_give_the_samples_of_single_rays() {
             scenes_own.estimator = EstimatorKind::Mis;
             scenes_own.mis.heuristic = MisHeuristic::Optimal;
         }
-        // Independent numbers, and Sobol's points drawn a chunk at a time.
-        for sampler in [SamplerKind::Independent, SamplerKind::Sobol] {
+        // Independent numbers, and Sobol's points and the strata's cells drawn a chunk
+        // at a time.
+        for sampler in SamplerKind::ALL {
             let (settings, camera, estimator) = set_up(&scene, &scenes_own, sampler);
             let pixels = (camera.width * camera.height) as usize;
             let states = |n: usize| -> Vec<Mutex<OptimalPixel>> {
@@ -174,8 +175,9 @@ fn samples_do_not_depend_on_rounds_passes_or_tiles() {
     scenes_own.resolution = Some((32, 24));
     scenes_own.seed = 5;
     scenes_own.spp = 12;
-    // Independent numbers, and Sobol's points drawn a chunk at a time.
-    for sampler in [SamplerKind::Independent, SamplerKind::Sobol] {
+    // Independent numbers, and Sobol's points and the strata's cells (12 samples: one
+    // by one, as for any count but a power of two) drawn a chunk at a time.
+    for sampler in SamplerKind::ALL {
         let (settings, camera, estimator) = set_up(&scene, &scenes_own, sampler);
         let invalid = AtomicU64::new(0);
         let lanes = light_lanes(&scene, &estimator);
@@ -243,8 +245,9 @@ fn culled_blocks_give_the_samples_of_single_rays() {
         let scene = load(spec).expect("scene");
         let mut scenes_own = RenderSettings::for_scene(&scene);
         scenes_own.resolution = Some((40, 32));
-        // Independent numbers, and Sobol's points drawn a chunk at a time.
-        for sampler in [SamplerKind::Independent, SamplerKind::Sobol] {
+        // Independent numbers, and Sobol's points and the strata's cells drawn a chunk
+        // at a time.
+        for sampler in SamplerKind::ALL {
             let (settings, camera, estimator) = set_up(&scene, &scenes_own, sampler);
             let boxes = scene.geometry.bvh().cut(TOP_BOXES);
             let cull = FrustumCull::new(&camera, &boxes).expect("finite boxes");

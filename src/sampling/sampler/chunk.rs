@@ -46,9 +46,10 @@ impl PixelStreams {
     /// The stratified cells of the first [`SEEDED_DIMENSIONS`] dimensions of samples
     /// `first`, `first` + 1, … (`len` ≤ [`CHUNK_LANES`] of them), for
     /// [`Sampler::with_cells`](super::Sampler::with_cells): eight samples at a time in
-    /// AVX2 lanes where the sample count is a power of two, else sample by sample from
-    /// the pixel's keys (a sample past the count draws independent numbers and takes no
-    /// cells). `None` unless the streams are the stratified sampler's.
+    /// AVX2 lanes where the sample count is a power of two and the chunk holds two
+    /// samples or more, else sample by sample from the pixel's keys (a sample past the
+    /// count draws independent numbers and takes no cells). `None` unless the streams
+    /// are the stratified sampler's.
     #[inline]
     pub fn chunk_cells(&self, first: u32, len: usize) -> Option<[Cells; CHUNK_LANES]> {
         self.chunk_cells_in(first, len, chunk_is_wide())

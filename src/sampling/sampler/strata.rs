@@ -62,12 +62,14 @@ impl EqualAreaRows {
     /// The cells of samples `first`, `first` + 1, … (`len` ≤ [`CHUNK_LANES`] of them)
     /// in each dimension whose key is in `keys`: `cells[l][d]` is
     /// [`EqualAreaRows::permute`]`(first + l, keys[d])` for the samples below `n`. The
-    /// others, which draw independent numbers instead, get unspecified cells (0 past
-    /// `len`): the cycle walk of a permutation may never end from an index ≥ n, whose
-    /// cycle under the hash need not enter 0..n. In AVX2 lanes where `wide` (the
-    /// processor has AVX2: see [`chunk_is_wide`](crate::sampling::sobol::chunk_is_wide))
-    /// and `n` is a power of two, the usual sample counts, whose permutation takes one
-    /// round of the hash and no walk; index by index otherwise.
+    /// others (lanes past `len`, and samples at or past `n`, which draw independent
+    /// numbers instead) get unspecified cells: the cycle walk of a permutation may never
+    /// end from an index ≥ n, whose cycle under the hash need not enter 0..n, so none is
+    /// started there. In AVX2 lanes where `wide` asks for them
+    /// ([`chunk_is_wide`](crate::sampling::sobol::chunk_is_wide)), the processor has
+    /// them, the chunk holds two samples or more and `n` is a power of two (the usual
+    /// sample counts, whose permutation takes one round of the hash and no walk); index
+    /// by index otherwise.
     #[inline]
     pub(super) fn permute_chunk<const D: usize>(
         &self,
@@ -77,8 +79,12 @@ impl EqualAreaRows {
         wide: bool,
     ) -> [[u32; D]; CHUNK_LANES] {
         #[cfg(target_arch = "x86_64")]
-        if wide && len >= 2 && self.n & self.mask == 0 {
-            // SAFETY: `wide` says the processor has AVX2.
+        if wide
+            && len >= 2
+            && self.n & self.mask == 0
+            && std::arch::is_x86_feature_detected!("avx2")
+        {
+            // SAFETY: the processor has AVX2, checked just above.
             return unsafe { permute_chunk_avx2(first, self.mask, keys) };
         }
         let _ = wide;
