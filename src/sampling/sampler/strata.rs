@@ -53,7 +53,9 @@ impl EqualAreaRows {
         equal_area_cell_in(cell, n, base, extra, jitter)
     }
 
-    /// [`permute`] of `i` among the `n` samples under `seed`.
+    /// [`permute`] of `i` among the `n` samples under `seed`, for `i` < n (the
+    /// sampler's indices; past the count it draws independent numbers): here an index
+    /// ≥ n is not reduced, and its walk may never end.
     #[inline]
     pub(super) fn permute(&self, i: u32, seed: u32) -> u32 {
         permute_masked(i, self.n, self.mask, seed)
@@ -175,9 +177,10 @@ fn equal_area_cell_in(cell: u32, n: u32, base: u32, extra: u32, jitter: Vec2) ->
 
 /// A pseudo-random permutation of 0..n evaluated at `i` (Kensler 2013, "Correlated
 /// Multi-Jittered Sampling", Pixar TM 13-01): a hashed bijection on the next power of
-/// two, cycle-walked back into range.
+/// two, cycle-walked back into range. An `i` ≥ n is taken modulo n first: the walk
+/// from such an index may never end (its cycle under the hash need not enter 0..n).
 pub fn permute(i: u32, n: u32, seed: u32) -> u32 {
-    permute_masked(i, n, permutation_mask(n), seed)
+    permute_masked(i % n.max(1), n, permutation_mask(n), seed)
 }
 
 /// [`permute`]'s bit mask for `n` samples: n − 1's highest bit and every bit below it

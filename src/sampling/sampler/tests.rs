@@ -5,6 +5,26 @@ use super::strata::kensler_hash;
 use super::*;
 use crate::sampling::sobol::{CHUNK_LANES, chunk_is_wide};
 
+/// An index at or past the count is taken modulo the count: Kensler's walk from one
+/// may never end. Among 3 under seed 0, the hash (on 0..4) fixes 3, so a walk from 3
+/// would stay there; `permute` returns what it returns for 0.
+#[test]
+fn permute_reduces_an_index_past_the_count() {
+    assert_eq!(
+        kensler_hash(3, 3, 0),
+        3,
+        "the walk from 3 among 3 would not end"
+    );
+    assert_eq!(permute(3, 3, 0), permute(0, 3, 0));
+    for (i, n) in [(u32::MAX, 3u32), (7, 1), (100, 16), (5, 0), (15, 9)] {
+        assert_eq!(
+            permute(i, n, 0),
+            permute(i % n.max(1), n, 0),
+            "{i} among {n}"
+        );
+    }
+}
+
 #[test]
 fn permute_is_a_bijection() {
     for n in [1u32, 2, 3, 7, 16, 100] {
