@@ -365,7 +365,7 @@ impl Sampler {
             SamplerKind::Stratified => {
                 let cell = self.stratified_cell();
                 let jitter = self.rng.next_f32();
-                ((cell as f32 + jitter) / self.rows.n as f32).min(ONE_MINUS_EPSILON)
+                self.rows.line(cell, jitter)
             }
             SamplerKind::Sobol => {
                 // Padding by reseeding (Burley 2020 §4): dimension 0 of a fresh

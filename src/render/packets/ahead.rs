@@ -38,6 +38,13 @@ pub(super) trait DrawsAhead {
     }
 }
 
+/// Sample `s`'s row among `rows`, the rows [`DrawsAhead::chunk`] drew for the chunk
+/// whose first sample is `first` (`s` in the chunk), if it drew any.
+#[inline(always)]
+pub(super) fn row_of<R>(rows: &Option<[R; CHUNK_LANES]>, first: u32, s: u32) -> Option<&R> {
+    rows.as_ref().map(|r| &r[(s - first) as usize])
+}
+
 /// Nothing ahead (the independent sampler).
 pub(super) struct Nothing;
 

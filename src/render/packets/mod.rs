@@ -53,7 +53,7 @@ use crate::math::Spectrum;
 use crate::sampling::sobol::CHUNK_LANES;
 use crate::sampling::{Sampler, SamplerKind, Uniform};
 use crate::scene::{Camera, Scene};
-use ahead::{DrawsAhead, Nothing, SobolPoints, StrataCells};
+use ahead::{DrawsAhead, Nothing, SobolPoints, StrataCells, row_of};
 pub(super) use order::{BLOCK_HEIGHT, BLOCK_WIDTH, CHUNK};
 use order::{BlockPixel, each_sample, sample_order};
 
@@ -185,7 +185,7 @@ impl CameraPackets<'_> {
                 for pixel @ (x, y, streams) in block {
                     let rows = A::chunk(streams, chunk.start, chunk.len());
                     for s in chunk.clone() {
-                        let row = rows.as_ref().map(|r| &r[(s - chunk.start) as usize]);
+                        let row = row_of(&rows, chunk.start, s);
                         let mut p = self.start::<A>(pixel, s, row);
                         let hit = if misses {
                             None
@@ -218,9 +218,8 @@ impl CameraPackets<'_> {
             }
             for s in chunk.clone() {
                 let start = traced.len();
-                let l = (s - chunk.start) as usize;
                 traced.extend(block.iter().zip(&rows).map(|(pixel, r)| {
-                    (self.start::<A>(pixel, s, r.as_ref().map(|r| &r[l])), None)
+                    (self.start::<A>(pixel, s, row_of(r, chunk.start, s)), None)
                 }));
                 // A block that surely misses leaves every hit `None` (the environment's
                 // light comes from `radiance`).
@@ -298,8 +297,8 @@ impl CameraPackets<'_> {
             };
             for s in chunk.clone() {
                 let film = if self.positions {
-                    let row = rows.as_ref().map(|r| &r[(s - chunk.start) as usize]);
-                    self.film_position::<A>(pixel, s, row).1
+                    self.film_position::<A>(pixel, s, row_of(&rows, chunk.start, s))
+                        .1
                 } else {
                     Vec2::new(*x as f32 + 0.5, *y as f32 + 0.5)
                 };

@@ -20,10 +20,16 @@ pub fn equal_area_cell(cell: u32, n: u32, jitter: Vec2) -> Vec2 {
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct EqualAreaRows {
     pub(super) n: u32,
-    base: u32,
-    extra: u32,
+    pub(super) base: u32,
+    pub(super) extra: u32,
     /// [`permutation_mask`] of `n`.
     mask: u32,
+}
+
+/// 2⁻ᵏ, exactly (k ≤ 126): the reciprocal of a power of two, built from its exponent.
+#[inline(always)]
+fn exp2_neg(k: u32) -> f32 {
+    f32::from_bits((127 - k) << 23)
 }
 
 impl EqualAreaRows {
@@ -38,19 +44,59 @@ impl EqualAreaRows {
     pub(super) fn new(n: u32) -> EqualAreaRows {
         let rows = (n as f32).sqrt() as u32;
         let rows = rows.clamp(1, n.max(1));
+        let (base, extra) = (n / rows, n % rows);
         EqualAreaRows {
             n,
-            base: n / rows,
-            extra: n % rows,
+            base,
+            extra,
             mask: permutation_mask(n),
         }
+    }
+
+    /// Whether every divisor of the layout is a power of two: `n` a power of two and
+    /// every row `base` cells long (n = 1, 2, 4, 8, 16, 64, 256, …). A cell's row and
+    /// column are then a shift and a mask, and each float quotient a product with the
+    /// divisor's reciprocal, which is exact (as is scaling by it), so
+    /// [`EqualAreaRows::cell`] and [`EqualAreaRows::line`] give bit for bit what the
+    /// divisions of [`equal_area_cell_in`] give, without them (two integer and two float
+    /// divisions per 2D draw). Derived from the layout where it is used, so that the
+    /// layout stays four words and a [`Sampler`](super::Sampler) small.
+    #[inline(always)]
+    pub(super) fn pow2(&self) -> bool {
+        // n & mask is 0 exactly for a power of two (mask = n − 1 then) or for n = 0 (no
+        // layout: `PixelStreams` of another sampler), as base & (base − 1) is for base.
+        let Self { n, base, .. } = *self;
+        self.extra == 0 && n & self.mask == 0 && base & base.wrapping_sub(1) == 0 && n != 0
     }
 
     /// [`equal_area_cell`] of `cell` in this layout.
     #[inline]
     pub(super) fn cell(&self, cell: u32, jitter: Vec2) -> Vec2 {
+        if self.pow2() {
+            let (shift, log_n) = (self.base.trailing_zeros(), self.n.trailing_zeros());
+            let col = cell & ((1 << shift) - 1);
+            // (cell − col) is the cells before this row, row × base; a row's height is
+            // base/n.
+            let y0 = (cell - col) as f32 * exp2_neg(log_n);
+            return Vec2::new(
+                ((col as f32 + jitter.x) * exp2_neg(shift)).min(ONE_MINUS_EPSILON),
+                (y0 + jitter.y * exp2_neg(log_n - shift)).min(ONE_MINUS_EPSILON),
+            );
+        }
         let EqualAreaRows { n, base, extra, .. } = *self;
         equal_area_cell_in(cell, n, base, extra, jitter)
+    }
+
+    /// The point `jitter` of the way through cell `cell` of the unit interval's `n`
+    /// equal cells: (cell + jitter)/n.
+    #[inline]
+    pub(super) fn line(&self, cell: u32, jitter: f32) -> f32 {
+        let x = cell as f32 + jitter;
+        match self.pow2() {
+            true => x * exp2_neg(self.n.trailing_zeros()),
+            false => x / self.n as f32,
+        }
+        .min(ONE_MINUS_EPSILON)
     }
 
     /// [`permute`] of `i` among the `n` samples under `seed`, for `i` < n (the
@@ -156,7 +202,7 @@ unsafe fn permute_chunk_avx2<const D: usize>(
 /// [`equal_area_cell`] with the layout given: `base` cells per row, the first `extra`
 /// rows one more.
 #[inline]
-fn equal_area_cell_in(cell: u32, n: u32, base: u32, extra: u32, jitter: Vec2) -> Vec2 {
+pub(super) fn equal_area_cell_in(cell: u32, n: u32, base: u32, extra: u32, jitter: Vec2) -> Vec2 {
     // Rows 0..extra hold base + 1 cells, the rest hold base.
     let (row, col, before) = if cell < extra * (base + 1) {
         let r = cell / (base + 1);

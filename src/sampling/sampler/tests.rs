@@ -25,6 +25,52 @@ fn permute_reduces_an_index_past_the_count() {
     }
 }
 
+/// The power-of-two layouts' shifts and reciprocals give bit for bit the divisions of
+/// [`equal_area_cell_in`] (2D) and (cell + jitter)/n (1D), for every such count up
+/// to 2³⁰, every cell of the small ones, jitters 0, just below 1 and between.
+#[test]
+fn power_of_two_layouts_divide_exactly() {
+    use super::strata::equal_area_cell_in;
+    for k in 0..32 {
+        let n = 1u32 << k;
+        let rows = EqualAreaRows::new(n);
+        // Square counts and 2, 8; other odd powers have rows of unequal length.
+        let square = k % 2 == 0 || k <= 3;
+        assert_eq!(rows.pow2(), square, "{n} samples");
+        if !square {
+            continue;
+        }
+        let (base, extra) = (rows.base, rows.extra);
+        let cells: Vec<u32> = if n <= 1024 {
+            (0..n).collect()
+        } else {
+            vec![0, 1, base - 1, base, n / 3, n / 2 + 5, n - base, n - 1]
+        };
+        let jitters = [0.0, 0.25, 0.5, 0.7310585, ONE_MINUS_EPSILON];
+        for &c in &cells {
+            for (&jx, &jy) in jitters.iter().zip(jitters.iter().rev()) {
+                let j = Vec2::new(jx, jy);
+                let divided = equal_area_cell_in(c, n, base, extra, j);
+                let shifted = rows.cell(c, j);
+                assert_eq!(
+                    shifted.to_array().map(f32::to_bits),
+                    divided.to_array().map(f32::to_bits),
+                    "n {n}, cell {c}, jitter {j}"
+                );
+                let line = ((c as f32 + jx) / n as f32).min(ONE_MINUS_EPSILON);
+                assert_eq!(
+                    rows.line(c, jx).to_bits(),
+                    line.to_bits(),
+                    "n {n}, cell {c}"
+                );
+            }
+        }
+    }
+    for n in [0u32, 3, 12, 72, 100, 144] {
+        assert!(!EqualAreaRows::new(n).pow2(), "{n} samples");
+    }
+}
+
 #[test]
 fn permute_is_a_bijection() {
     for n in [1u32, 2, 3, 7, 16, 100] {
