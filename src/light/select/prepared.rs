@@ -35,6 +35,20 @@ pub struct PreparedBounds {
 }
 
 impl PreparedBounds {
+    /// Whether these bound a point that emits all around (a point light): no extent, no
+    /// distance floor, θ_o = π, and θ_e below π (so θ' = 0 passes its test). At such
+    /// bounds [`PreparedBounds::importance`] is φ/d² · min(cos θ_i, 1) wherever it is
+    /// not zero, which the light BVH's nodes of point lights compute without the cones'
+    /// square roots and division (`bvh::wide`).
+    pub(super) fn is_point(&self) -> bool {
+        self.half == Vec3::ZERO
+            && self.radius2 == 0.0
+            && self.d2_floor == 0.0
+            && self.cos_theta_o == -1.0
+            && self.sin_theta_o == 0.0
+            && self.cos_theta_e < 1.0
+    }
+
     /// The prepared form of `b`.
     pub fn new(b: &LightBounds) -> PreparedBounds {
         let half_diagonal = 0.5 * b.aabb.extent().length();

@@ -9,9 +9,10 @@
 //!
 //! Each lane computes exactly what [`PreparedBounds::importance`] computes for the same
 //! bounds and point (the same operations in the same order, branches turned into
-//! selects), bit for bit; the tests below check it.
+//! selects), bit for bit; the tests (`wide/tests.rs`) check it. A node of point lights
+//! takes a shorter formula with the same results ([`WideNode::importance`]).
 
-use glam::Vec4;
+use glam::{BVec4A, Vec4};
 
 use super::Node;
 use crate::light::ShadingPoint;
@@ -40,6 +41,9 @@ pub(super) struct WideNode {
     pub child: [u32; LANES],
     /// Which lanes hold a single light.
     pub leaf: [bool; LANES],
+    /// Whether every used lane's bounds are a point light's
+    /// ([`PreparedBounds::is_point`]), whose importance needs no cones.
+    points: bool,
 }
 
 impl WideNode {
@@ -58,6 +62,7 @@ impl WideNode {
             two_sided: [0.0; LANES],
             child: [0; LANES],
             leaf: [false; LANES],
+            points: false,
         }
     }
 
@@ -77,28 +82,31 @@ impl WideNode {
         self.two_sided[l] = b.two_sided as u8 as f32;
     }
 
+    /// Marks the node as one of point lights where the bounds of its used lanes, `used`,
+    /// all are.
+    fn mark_points(&mut self, used: &[PreparedBounds]) {
+        self.points = used.iter().all(PreparedBounds::is_point);
+    }
+
     /// The four lanes' importances at `at`: [`PreparedBounds::importance`] of each
     /// lane's bounds (see there for the formula), 0 for unused lanes. `glam::Vec4` is
     /// four SSE lanes on x86-64 (NEON on aarch64, scalar elsewhere).
     #[inline]
     pub fn importance(&self, at: &ShadingPoint) -> [f32; LANES] {
+        if self.points {
+            return self.point_importance(at);
+        }
         let v4 = Vec4::from_array;
         let splat = Vec4::splat;
         let (zero, one) = (Vec4::ZERO, Vec4::ONE);
         let safe_sqrt = |x: Vec4| x.max(zero).sqrt();
-        let (p, n) = (at.p, at.n);
-        let (px, py, pz) = (splat(p.x), splat(p.y), splat(p.z));
-        let (nx, ny, nz) = (splat(n.x), splat(n.y), splat(n.z));
-        let (cx, cy, cz) = (v4(self.centre[0]), v4(self.centre[1]), v4(self.centre[2]));
-        let (vx, vy, vz) = (px - cx, py - cy, pz - cz);
-        let dist2 = vx * vx + vy * vy + vz * vz;
-        let d2 = dist2.max(v4(self.d2_floor));
-        let rcp = dist2.sqrt().recip();
-        // wi: from the cluster towards the shading point, zero where it has no length.
-        let unit = rcp.is_finite_mask() & rcp.cmpgt(zero);
-        let wx = Vec4::select(unit, vx * rcp, zero);
-        let wy = Vec4::select(unit, vy * rcp, zero);
-        let wz = Vec4::select(unit, vz * rcp, zero);
+        let Sight {
+            dist2,
+            d2,
+            w: [wx, wy, wz],
+            cos_i,
+            above,
+        } = self.sight(at);
         let cos_w_signed = v4(self.w[0]) * wx + v4(self.w[1]) * wy + v4(self.w[2]) * wz;
         let two_sided = v4(self.two_sided).cmpne(zero);
         let cos_w = Vec4::select(two_sided, cos_w_signed.abs(), cos_w_signed);
@@ -115,26 +123,100 @@ impl WideNode {
         let sin_x = Vec4::select(inside_cone, zero, sin_w * cos_o - cos_w * sin_o);
         let cos_p = Vec4::select(cos_x.cmpgt(cos_b), one, cos_x * cos_b + sin_x * sin_b);
         // θ'_i = max(0, θ_i − θ_b).
-        let cos_i = nx * -wx + ny * -wy + nz * -wz;
         let sin_i = safe_sqrt(one - cos_i * cos_i);
         let cos_pi = Vec4::select(cos_i.cmpgt(cos_b), one, cos_i * cos_b + sin_i * sin_b);
         // The box's highest point above the shading point's tangent plane.
-        let n_abs = n.abs();
-        let highest = (nx * (cx - px) + ny * (cy - py) + nz * (cz - pz))
+        let n_abs = at.n.abs();
+        let highest = above
             + (splat(n_abs.x) * v4(self.half[0])
                 + splat(n_abs.y) * v4(self.half[1])
                 + splat(n_abs.z) * v4(self.half[2]));
         let phi = v4(self.phi);
         let importance = phi * cos_p / d2 * cos_pi;
-        // The scalar version's early returns, as one mask.
-        let contributes = phi.cmpgt(zero)
+        let lit = !cos_p.cmple(v4(self.cos_e));
+        self.kept(importance, lit, d2, cos_pi, highest)
+    }
+
+    /// [`WideNode::importance`] of a node of point lights, bit for bit. With no extent,
+    /// no floor and θ_o = π, the cones reduce to constants where a lane can contribute:
+    /// the sphere subtends θ_b = 0 (cos 1, sin 0; d² = 0 contributes nothing), θ' = 0
+    /// (cos θ' = 1 > cos θ_e), and cos θ'_i = cos θ_i · 1 + sin θ_i · 0 clamped at 1,
+    /// which is cos θ_i (or +0 for −0, which contributes nothing either way); the
+    /// highest point of the box is its centre. What is left is φ/d² · min(cos θ_i, 1):
+    /// one square root and two divisions where the cones take five and three.
+    #[inline]
+    fn point_importance(&self, at: &ShadingPoint) -> [f32; LANES] {
+        let one = Vec4::ONE;
+        let Sight {
+            d2, cos_i, above, ..
+        } = self.sight(at);
+        let cos_pi = Vec4::select(cos_i.cmpgt(one), one, cos_i);
+        let importance = Vec4::from_array(self.phi) / d2 * cos_pi;
+        self.kept(importance, BVec4A::splat(true), d2, cos_pi, above)
+    }
+
+    /// What both formulas derive from the shading point and the lanes' centres.
+    #[inline(always)]
+    fn sight(&self, at: &ShadingPoint) -> Sight {
+        let v4 = Vec4::from_array;
+        let splat = Vec4::splat;
+        let zero = Vec4::ZERO;
+        let (p, n) = (at.p, at.n);
+        let (px, py, pz) = (splat(p.x), splat(p.y), splat(p.z));
+        let (nx, ny, nz) = (splat(n.x), splat(n.y), splat(n.z));
+        let (cx, cy, cz) = (v4(self.centre[0]), v4(self.centre[1]), v4(self.centre[2]));
+        let (vx, vy, vz) = (px - cx, py - cy, pz - cz);
+        let dist2 = vx * vx + vy * vy + vz * vz;
+        let rcp = dist2.sqrt().recip();
+        // wi: from the cluster towards the shading point, zero where it has no length.
+        let unit = rcp.is_finite_mask() & rcp.cmpgt(zero);
+        let wx = Vec4::select(unit, vx * rcp, zero);
+        let wy = Vec4::select(unit, vy * rcp, zero);
+        let wz = Vec4::select(unit, vz * rcp, zero);
+        Sight {
+            dist2,
+            d2: dist2.max(v4(self.d2_floor)),
+            w: [wx, wy, wz],
+            cos_i: nx * -wx + ny * -wy + nz * -wz,
+            above: nx * (cx - px) + ny * (cy - py) + nz * (cz - pz),
+        }
+    }
+
+    /// `importance` in the lanes that pass every test (φ > 0, d² > 0, `lit`, θ'_i
+    /// below π/2, the box partly above the horizon, a finite result), 0 elsewhere: the
+    /// scalar version's early returns, as one mask.
+    #[inline(always)]
+    fn kept(
+        &self,
+        importance: Vec4,
+        lit: BVec4A,
+        d2: Vec4,
+        cos_pi: Vec4,
+        highest: Vec4,
+    ) -> [f32; LANES] {
+        let zero = Vec4::ZERO;
+        let contributes = Vec4::from_array(self.phi).cmpgt(zero)
             & !d2.cmple(zero)
-            & !cos_p.cmple(v4(self.cos_e))
+            & lit
             & !cos_pi.cmple(zero)
             & !highest.cmple(zero)
             & importance.is_finite_mask();
         Vec4::select(contributes, importance.max(zero), zero).to_array()
     }
+}
+
+/// What [`WideNode::importance`]'s two formulas share, lane by lane.
+struct Sight {
+    /// The squared distance from the shading point to the centre, and the same floored.
+    dist2: Vec4,
+    d2: Vec4,
+    /// The unit direction from the centre towards the shading point (zero where the
+    /// distance has no reciprocal).
+    w: [Vec4; 3],
+    /// cos θ_i: the shading normal against the direction into the centre.
+    cos_i: Vec4,
+    /// n·(c − p): the centre's height above the shading point's tangent plane.
+    above: Vec4,
 }
 
 /// Where a light sits in the wide tree: its node and lane.
@@ -203,6 +285,8 @@ fn add_node(
     tree.parent.push(parent);
     tree.depth = tree.depth.max(depth);
     let mut node = WideNode::empty();
+    let used: Vec<PreparedBounds> = lanes.iter().map(|&(i, _)| prepared[i]).collect();
+    node.mark_points(&used);
     for (l, &(i, _)) in lanes.iter().enumerate() {
         node.set_bounds(l, &prepared[i]);
         let slot = Slot {
@@ -222,64 +306,4 @@ fn add_node(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::geometry::Aabb;
-    use crate::light::LightBounds;
-    use glam::Vec3;
-
-    #[test]
-    fn every_lane_equals_the_scalar_importance_bit_for_bit() {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
-        };
-        let mut nonzero = 0;
-        for i in 0..50_000 {
-            let mut node = WideNode::empty();
-            let mut scalar = Vec::new();
-            // 1 to 4 lanes used: flat, point-like and solid boxes.
-            for l in 0..1 + i % LANES {
-                let lo = Vec3::new(next(), next(), next()) * 4.0;
-                let size = match (i + l) % 3 {
-                    0 => Vec3::new(next().abs(), 0.0, next().abs()),
-                    1 => Vec3::ZERO,
-                    _ => Vec3::new(next(), next(), next()).abs() * 3.0,
-                };
-                let b = PreparedBounds::new(&LightBounds {
-                    aabb: Aabb {
-                        min: lo,
-                        max: lo + size,
-                    },
-                    phi: next().abs() * 10.0,
-                    w: Vec3::new(next(), next(), next()).normalize_or(Vec3::Z),
-                    cos_theta_o: next(),
-                    cos_theta_e: if l % 2 == 0 { 0.0 } else { next() },
-                    two_sided: (i + l) % 5 == 0,
-                });
-                node.set_bounds(l, &b);
-                scalar.push(b);
-            }
-            let p = if i % 7 == 0 {
-                scalar[0].centre
-            } else {
-                Vec3::new(next(), next(), next()) * 6.0
-            };
-            let at = ShadingPoint {
-                p,
-                ng: Vec3::Y,
-                n: Vec3::new(next(), next(), next()).normalize_or(Vec3::Y),
-            };
-            let lanes = node.importance(&at);
-            for (l, lane) in lanes.iter().enumerate() {
-                let expected = scalar.get(l).map_or(0.0, |b| b.importance(&at));
-                assert_eq!(lane.to_bits(), expected.to_bits(), "case {i} lane {l}");
-                nonzero += (expected > 0.0) as u32;
-            }
-        }
-        assert!(nonzero > 25_000, "only {nonzero} lanes with importance");
-    }
-}
+mod tests;

@@ -1,0 +1,162 @@
+//! The wide nodes' importances against the scalar [`PreparedBounds::importance`], bit
+//! for bit.
+
+use super::*;
+use crate::geometry::Aabb;
+use crate::light::LightBounds;
+use glam::Vec3;
+
+/// Numbers in [−1, 1) from a xorshift generator seeded with `state`.
+fn numbers(mut state: u64) -> impl FnMut() -> f32 {
+    move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
+    }
+}
+
+/// Checks that each lane of `node` at `at` (case `case`) is the scalar importance of
+/// its bounds in `scalar` (0 past them), bit for bit; returns the lanes and how many
+/// are positive.
+fn lanes_are_scalar(
+    node: &WideNode,
+    scalar: &[PreparedBounds],
+    at: &ShadingPoint,
+    case: usize,
+) -> ([f32; LANES], u32) {
+    let lanes = node.importance(at);
+    let mut positive = 0;
+    for (l, lane) in lanes.iter().enumerate() {
+        let expected = scalar.get(l).map_or(0.0, |b| b.importance(at));
+        assert_eq!(lane.to_bits(), expected.to_bits(), "case {case} lane {l}");
+        positive += (expected > 0.0) as u32;
+    }
+    (lanes, positive)
+}
+
+#[test]
+fn every_lane_equals_the_scalar_importance_bit_for_bit() {
+    let mut next = numbers(0x2545_f491_4f6c_dd1d);
+    let mut nonzero = 0;
+    for i in 0..50_000 {
+        let mut node = WideNode::empty();
+        let mut scalar = Vec::new();
+        // 1 to 4 lanes used: flat, point-like and solid boxes.
+        for l in 0..1 + i % LANES {
+            let lo = Vec3::new(next(), next(), next()) * 4.0;
+            let size = match (i + l) % 3 {
+                0 => Vec3::new(next().abs(), 0.0, next().abs()),
+                1 => Vec3::ZERO,
+                _ => Vec3::new(next(), next(), next()).abs() * 3.0,
+            };
+            let b = PreparedBounds::new(&LightBounds {
+                aabb: Aabb {
+                    min: lo,
+                    max: lo + size,
+                },
+                phi: next().abs() * 10.0,
+                w: Vec3::new(next(), next(), next()).normalize_or(Vec3::Z),
+                cos_theta_o: next(),
+                cos_theta_e: if l % 2 == 0 { 0.0 } else { next() },
+                two_sided: (i + l) % 5 == 0,
+            });
+            node.set_bounds(l, &b);
+            scalar.push(b);
+        }
+        let p = if i % 7 == 0 {
+            scalar[0].centre
+        } else {
+            Vec3::new(next(), next(), next()) * 6.0
+        };
+        let at = ShadingPoint {
+            p,
+            ng: Vec3::Y,
+            n: Vec3::new(next(), next(), next()).normalize_or(Vec3::Y),
+        };
+        nonzero += lanes_are_scalar(&node, &scalar, &at, i).1;
+    }
+    assert!(nonzero > 25_000, "only {nonzero} lanes with importance");
+}
+
+/// Nodes of point lights take the short formula, bit for bit the scalar importance:
+/// shading points anywhere, on a light, and right below one facing it (cos θ_i at 1,
+/// where rounding may pass it); a node with one lane of another light does not.
+#[test]
+fn point_nodes_equal_the_scalar_importance_bit_for_bit() {
+    let mut next = numbers(0x1234_5678_9abc_def1);
+    let point = |c: Vec3, phi: f32| {
+        PreparedBounds::new(&LightBounds {
+            aabb: Aabb { min: c, max: c },
+            phi,
+            w: Vec3::Z,
+            cos_theta_o: -1.0,
+            cos_theta_e: 0.0,
+            two_sided: false,
+        })
+    };
+    let (mut nonzero, mut at_one) = (0, 0);
+    for i in 0..50_000 {
+        let mut node = WideNode::empty();
+        let mut scalar = Vec::new();
+        for l in 0..1 + i % LANES {
+            let phi = if (i + l) % 11 == 0 {
+                0.0
+            } else {
+                next().abs() * 10.0
+            };
+            let b = point(Vec3::new(next(), next(), next()) * 4.0, phi);
+            assert!(b.is_point());
+            node.set_bounds(l, &b);
+            scalar.push(b);
+        }
+        node.mark_points(&scalar);
+        assert!(node.points);
+        let c = scalar[0].centre;
+        let at = match i % 5 {
+            0 => ShadingPoint {
+                p: c,
+                ng: Vec3::Y,
+                n: Vec3::Y,
+            },
+            1 => {
+                let up = Vec3::new(next(), next(), next()).normalize_or(Vec3::Y);
+                ShadingPoint {
+                    p: c - up * (next().abs() * 3.0 + 1e-3),
+                    ng: up,
+                    n: up,
+                }
+            }
+            _ => ShadingPoint {
+                p: Vec3::new(next(), next(), next()) * 6.0,
+                ng: Vec3::Y,
+                n: Vec3::new(next(), next(), next()).normalize_or(Vec3::Y),
+            },
+        };
+        let (lanes, positive) = lanes_are_scalar(&node, &scalar, &at, i);
+        nonzero += positive;
+        if i % 5 == 1 && scalar[0].phi > 0.0 {
+            at_one += (lanes[0] == scalar[0].phi / (at.p - c).length_squared()) as u32;
+        }
+    }
+    assert!(nonzero > 20_000, "only {nonzero} lanes with importance");
+    assert!(
+        at_one > 1_000,
+        "only {at_one} points straight below a light"
+    );
+    // A sphere light's bounds in one lane: the node takes the cones.
+    let mut node = WideNode::empty();
+    let sphere = PreparedBounds::new(&LightBounds {
+        aabb: Aabb {
+            min: Vec3::splat(-0.5),
+            max: Vec3::splat(0.5),
+        },
+        phi: 1.0,
+        w: Vec3::Z,
+        cos_theta_o: -1.0,
+        cos_theta_e: 0.0,
+        two_sided: false,
+    });
+    node.mark_points(&[point(Vec3::ONE, 1.0), sphere]);
+    assert!(!sphere.is_point() && !node.points);
+}
