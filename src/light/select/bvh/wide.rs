@@ -91,7 +91,7 @@ impl WideNode {
     /// The four lanes' importances at `at`: [`PreparedBounds::importance`] of each
     /// lane's bounds (see there for the formula), 0 for unused lanes. `glam::Vec4` is
     /// four SSE lanes on x86-64 (NEON on aarch64, scalar elsewhere).
-    #[inline]
+    #[inline(always)]
     pub fn importance(&self, at: &ShadingPoint) -> [f32; LANES] {
         if self.points {
             return self.point_importance(at);
