@@ -36,7 +36,8 @@ pub struct PreparedBounds {
 
 impl PreparedBounds {
     /// Whether these bound a point that emits all around (a point light): no extent, no
-    /// distance floor, θ_o = π, and θ_e below π (so θ' = 0 passes its test). At such
+    /// distance floor, θ_o = π, θ_e above 0 (so θ' = 0 passes its test) and a finite
+    /// axis (a NaN in it would make the cones' result NaN, hence 0). At such
     /// bounds [`PreparedBounds::importance`] is φ/d² · min(cos θ_i, 1) wherever it is
     /// not zero, which the light BVH's nodes of point lights compute without the cones'
     /// square roots and division (`bvh::wide`).
@@ -47,6 +48,7 @@ impl PreparedBounds {
             && self.cos_theta_o == -1.0
             && self.sin_theta_o == 0.0
             && self.cos_theta_e < 1.0
+            && self.w.is_finite()
     }
 
     /// The prepared form of `b`.

@@ -58,7 +58,7 @@ impl EqualAreaRows {
     /// column are then a shift and a mask, and each float quotient a product with the
     /// divisor's reciprocal, which is exact (as is scaling by it), so
     /// [`EqualAreaRows::cell`] and [`EqualAreaRows::line`] give bit for bit what the
-    /// divisions of [`equal_area_cell_in`] give, without them (two integer and two float
+    /// divisions of [`equal_area_cell_in`] give, without them (two integer and three float
     /// divisions per 2D draw). Derived from the layout where it is used, so that the
     /// layout stays four words and a [`Sampler`](super::Sampler) small.
     #[inline(always)]

@@ -10,7 +10,7 @@
 //! Each lane computes exactly what [`PreparedBounds::importance`] computes for the same
 //! bounds and point (the same operations in the same order, branches turned into
 //! selects), bit for bit; the tests (`wide/tests.rs`) check it. A node of point lights
-//! takes a shorter formula with the same results ([`WideNode::importance`]).
+//! takes a shorter formula with the same results (`WideNode::point_importance`).
 
 use glam::{BVec4A, Vec4};
 
@@ -84,8 +84,8 @@ impl WideNode {
 
     /// Marks the node as one of point lights where the bounds of its used lanes, `used`,
     /// all are.
-    fn mark_points(&mut self, used: &[PreparedBounds]) {
-        self.points = used.iter().all(PreparedBounds::is_point);
+    fn mark_points<'a>(&mut self, used: impl IntoIterator<Item = &'a PreparedBounds>) {
+        self.points = used.into_iter().all(PreparedBounds::is_point);
     }
 
     /// The four lanes' importances at `at`: [`PreparedBounds::importance`] of each
@@ -285,8 +285,7 @@ fn add_node(
     tree.parent.push(parent);
     tree.depth = tree.depth.max(depth);
     let mut node = WideNode::empty();
-    let used: Vec<PreparedBounds> = lanes.iter().map(|&(i, _)| prepared[i]).collect();
-    node.mark_points(&used);
+    node.mark_points(lanes.iter().map(|&(i, _)| &prepared[i]));
     for (l, &(i, _)) in lanes.iter().enumerate() {
         node.set_bounds(l, &prepared[i]);
         let slot = Slot {

@@ -159,4 +159,30 @@ fn point_nodes_equal_the_scalar_importance_bit_for_bit() {
     });
     node.mark_points(&[point(Vec3::ONE, 1.0), sphere]);
     assert!(!sphere.is_point() && !node.points);
+    // Bounds that miss one condition each are not a point's: a degenerate area light
+    // (θ_o = 0), no emission cone (θ_e = 0), an extent too small to square, an axis
+    // that is not a number.
+    let bounds = |min: Vec3, max: Vec3, cos_theta_o: f32, cos_theta_e: f32, w: Vec3| {
+        PreparedBounds::new(&LightBounds {
+            aabb: Aabb { min, max },
+            phi: 1.0,
+            w,
+            cos_theta_o,
+            cos_theta_e,
+            two_sided: false,
+        })
+    };
+    let (o, z) = (Vec3::ONE, Vec3::Z);
+    assert!(bounds(o, o, -1.0, 0.0, z).is_point());
+    for (i, b) in [
+        bounds(o, o, 1.0, 0.0, z),
+        bounds(o, o, -1.0, 1.0, z),
+        bounds(Vec3::ZERO, Vec3::splat(1e-30), -1.0, 0.0, z),
+        bounds(o, o, -1.0, 0.0, Vec3::NAN),
+    ]
+    .iter()
+    .enumerate()
+    {
+        assert!(!b.is_point(), "case {i}: {b:?}");
+    }
 }
