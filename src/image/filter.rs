@@ -166,6 +166,30 @@ impl PreparedFilter {
         (lo as u32, n)
     }
 
+    /// [`span`](Self::span) of both axes of `p` in an image `width` × `height`, bit for
+    /// bit: on x86-64 the four ends of the two footprints are rounded in one vector
+    /// (truncation, then one up or down where it fell short), where the scalar rounding
+    /// takes two conversions and a comparison per end, each conversion with the checks
+    /// of Rust's saturating `as`. Positions beyond [`I32_SAFE`] (and NaN) take the
+    /// scalar path.
+    #[inline(always)]
+    fn spans(&self, p: Vec2, (width, height): (u32, u32)) -> Spans64 {
+        #[cfg(target_arch = "x86_64")]
+        {
+            let r = self.filter.radius();
+            let ends = Vec4::new(p.x - 0.5 - r, p.x - 0.5 + r, p.y - 0.5 - r, p.y - 0.5 + r);
+            if ends.abs().cmplt(Vec4::splat(I32_SAFE)).all() {
+                let [x0, x1, y0, y1] = round_ends(ends);
+                let clamp = |lo: i32, hi: i32, size: u32| {
+                    let (lo, hi) = ((lo as i64).max(0), (hi as i64).min(size as i64 - 1));
+                    (lo, ((hi - lo + 1).max(0) as usize).min(MAX_FOOTPRINT))
+                };
+                return (clamp(x0, x1, width), clamp(y0, y1, height));
+            }
+        }
+        (self.span(p.x, width), self.span(p.y, height))
+    }
+
     /// The first pixel and the number of pixels along one axis that a sample at `p`
     /// reaches in an image `size` pixels long (the footprint, clamped).
     #[inline(always)]
@@ -184,7 +208,7 @@ impl PreparedFilter {
     /// image's edge): callers mask them. `None` where a footprint is wider.
     #[inline(always)]
     pub fn weights_xy4(&self, p: Vec2, (width, height): (u32, u32)) -> Option<(Spans, Vec4, Vec4)> {
-        let ((xl, nx), (yl, ny)) = (self.span(p.x, width), self.span(p.y, height));
+        let ((xl, nx), (yl, ny)) = self.spans(p, (width, height));
         if nx > 4 || ny > 4 {
             return None;
         }
@@ -206,6 +230,39 @@ impl PreparedFilter {
             Filter::Gaussian { .. } => (exp4(self.alpha * x * x) - self.bias).max(Vec4::ZERO),
         }
     }
+}
+
+/// Both axes' spans (first pixel, pixel count) before the conversion to `u32`.
+type Spans64 = ((i64, usize), (i64, usize));
+
+/// Footprint ends (x low, x high, y low, y high), each below [`I32_SAFE`] in magnitude,
+/// rounded inwards to pixel indices: the low ends up, the high ends down, as
+/// [`Filter::footprint`] rounds them (the same truncation and the same comparisons).
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn round_ends(ends: Vec4) -> [i32; 4] {
+    use std::arch::x86_64::{
+        __m128, __m128i, _mm_add_epi32, _mm_and_si128, _mm_castps_si128, _mm_cmpgt_ps,
+        _mm_cmplt_ps, _mm_cvtepi32_ps, _mm_cvttps_epi32, _mm_set_epi32, _mm_storeu_si128,
+        _mm_sub_epi32,
+    };
+    let t: __m128 = ends.into();
+    let mut out = [0i32; 4];
+    // SAFETY: SSE2, which these need, is part of x86-64; `out` holds four i32.
+    unsafe {
+        let i = _mm_cvttps_epi32(t);
+        let f = _mm_cvtepi32_ps(i);
+        // All ones (−1) where the truncation fell below t (a low end moves up one) or
+        // above it (a high end moves down one); lanes 0 and 2 are low ends.
+        let below = _mm_castps_si128(_mm_cmplt_ps(f, t));
+        let above = _mm_castps_si128(_mm_cmpgt_ps(f, t));
+        let low = _mm_set_epi32(0, -1, 0, -1);
+        let high = _mm_set_epi32(-1, 0, -1, 0);
+        let up = _mm_sub_epi32(i, _mm_and_si128(below, low));
+        let rounded = _mm_add_epi32(up, _mm_and_si128(above, high));
+        _mm_storeu_si128(out.as_mut_ptr() as *mut __m128i, rounded);
+    }
+    out
 }
 
 #[cfg(test)]
@@ -262,6 +319,33 @@ mod tests {
                         assert_eq!(wk.to_bits(), f.eval(x).to_bits(), "{f:?} at {x}");
                     }
                 }
+            }
+        }
+    }
+
+    /// Both axes' spans at once are each axis's, on pixel edges and centres, off the
+    /// image on either side, past the vector path's range and at NaN.
+    #[test]
+    fn spans_are_each_axis_span() {
+        let mut rng = crate::sampling::rng::Rng32::new(3);
+        let mut ps: Vec<f32> = (0..4000).map(|i| i as f32 * 0.0125 - 10.0).collect();
+        ps.extend((0..4000).map(|_| (rng.next_f32() - 0.25) * 80.0));
+        ps.extend([
+            -3e9,
+            -1e9,
+            -999_999_900.0,
+            999_999_900.0,
+            1e9,
+            3e9,
+            f32::NAN,
+        ]);
+        for f in FILTERS {
+            let prepared = f.prepare();
+            for (k, &x) in ps.iter().enumerate() {
+                let p = Vec2::new(x, ps[(k * 7919) % ps.len()]);
+                let (w, h) = (13 + (k % 40) as u32, 1 + (k % 17) as u32);
+                let want = (prepared.span(p.x, w), prepared.span(p.y, h));
+                assert_eq!(prepared.spans(p, (w, h)), want, "{f:?} at {p}, {w} × {h}");
             }
         }
     }

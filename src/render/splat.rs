@@ -172,9 +172,29 @@ impl SplatBuffer {
 
     /// [`splat`](Self::splat)'s body. The weights are evaluated once per axis (the
     /// filter is separable); each cell gains w, w², w·x and (w·x)·x with w = w_y·w_x.
+    /// A sample of radiance zero (every channel ±0: a ray that saw nothing, or a
+    /// shadowed point) adds only w and w²: its other terms are ±0, and adding ±0 leaves
+    /// every sum as it was, bit for bit, since no sum is ever −0 (each starts at +0, and
+    /// in round-to-nearest a + b is −0 only where a and b both are).
     #[inline(always)]
     fn splat_lanes(&mut self, filter: &PreparedFilter, (w, h): (u32, u32), p: Vec2, l: Spectrum) {
-        let x = l.as_dvec3();
+        if l == Spectrum::ZERO {
+            self.splat_weights::<false>(filter, (w, h), p, DVec3::ZERO);
+        } else {
+            self.splat_weights::<true>(filter, (w, h), p, l.as_dvec3());
+        }
+    }
+
+    /// [`splat_lanes`](Self::splat_lanes) for radiance `x`, all eight sums where `LIT`,
+    /// else only w and w² (for `x` zero).
+    #[inline(always)]
+    fn splat_weights<const LIT: bool>(
+        &mut self,
+        filter: &PreparedFilter,
+        (w, h): (u32, u32),
+        p: Vec2,
+        x: DVec3,
+    ) {
         // Lanes past the footprint add nothing (the filter's values further on are
         // positive where the footprint was cut at the image's edge).
         if let Some((((xl, nx), (yl, ny)), ex, ey)) = filter.weights_xy4(p, (w, h)) {
@@ -186,7 +206,7 @@ impl SplatBuffer {
             }
             let inside = Vec4::new(0.0, 1.0, 2.0, 3.0).cmplt(Vec4::splat(nx as f32));
             let wx = Vec4::select(inside, ex, Vec4::ZERO).to_array();
-            self.add_rows((xl, yl), &wx, &ey.to_array()[..ny], x);
+            self.add_rows::<LIT>((xl, yl), &wx, &ey.to_array()[..ny], x);
             return;
         }
         let mut wx = [0.0f32; FOOTPRINT_LANES];
@@ -196,14 +216,20 @@ impl SplatBuffer {
             filter.weights(p.y, h, &mut wy),
         );
         wx[nx..].fill(0.0);
-        self.add_rows((xl, yl), &wx[..nx.next_multiple_of(4)], &wy[..ny], x);
+        self.add_rows::<LIT>((xl, yl), &wx[..nx.next_multiple_of(4)], &wy[..ny], x);
     }
 
-    /// Adds w = `wy[j]`·`wx[i]` and its products with `x` to the cell of pixel
-    /// (`xl` + i, `yl` + j), in groups of four lanes (`wx`'s length is a multiple of
-    /// four; zero weights past the footprint).
+    /// Adds w = `wy[j]`·`wx[i]` and its products with `x` (where `LIT`, else w and w²
+    /// alone) to the cell of pixel (`xl` + i, `yl` + j), in groups of four lanes (`wx`'s
+    /// length is a multiple of four; zero weights past the footprint).
     #[inline(always)]
-    fn add_rows(&mut self, (xl, yl): (u32, u32), wx: &[f32], wy: &[f32], x: DVec3) {
+    fn add_rows<const LIT: bool>(
+        &mut self,
+        (xl, yl): (u32, u32),
+        wx: &[f32],
+        wy: &[f32],
+        x: DVec3,
+    ) {
         let stride = self.stride();
         let Self {
             x0,
@@ -213,10 +239,9 @@ impl SplatBuffer {
             sums,
             ..
         } = self;
-        // The planes' slices, split once per splat rather than once per row.
-        let mut split = sums.chunks_exact_mut(stride);
-        let mut planes: [&mut [f64]; PLANES] =
-            std::array::from_fn(|_| split.next().expect("PLANES planes"));
+        // Every plane is `stride` long: a group of cells checked to lie within `stride`
+        // lies within each plane.
+        assert!(sums.len() == PLANES * stride && count.len() == stride);
         for (j, &wyj) in wy.iter().enumerate() {
             if wyj <= 0.0 {
                 continue;
@@ -224,6 +249,7 @@ impl SplatBuffer {
             let row = ((yl + j as u32 - *y0) * *width + xl - *x0) as usize;
             for (g, wx4) in wx.chunks_exact(4).enumerate() {
                 let at = row + 4 * g;
+                assert!(at + 4 <= stride, "a footprint beyond the tile's buffer");
                 let wt: [f64; 4] = std::array::from_fn(|k| (wyj * wx4[k]) as f64);
                 let adds: [[f64; 4]; PLANES] = [
                     wt,
@@ -235,8 +261,14 @@ impl SplatBuffer {
                     wt.map(|w| (w * x.y) * x.y),
                     wt.map(|w| (w * x.z) * x.z),
                 ];
-                for (plane, add) in planes.iter_mut().zip(adds) {
-                    for (sum, t) in plane[at..at + 4].iter_mut().zip(add) {
+                let used = if LIT { PLANES } else { 2 };
+                for (k, add) in adds.iter().enumerate().take(used) {
+                    let cells = k * stride + at..k * stride + at + 4;
+                    // SAFETY: k < PLANES and at + 4 ≤ stride (both checked above, once
+                    // per group rather than once per plane), so `cells` lies within
+                    // `sums`, PLANES × stride long.
+                    let sums = unsafe { sums.get_unchecked_mut(cells) };
+                    for (sum, t) in sums.iter_mut().zip(add) {
                         *sum += t;
                     }
                 }
@@ -311,7 +343,8 @@ mod tests {
     }
 
     /// The plane-by-plane sums, with and without AVX2, are bit for bit those of adding
-    /// each sample to each cell it reaches with a positive weight, one cell at a time:
+    /// each sample to each cell it reaches with a positive weight, one cell at a time
+    /// (all eight terms, also for samples of radiance zero):
     /// tiles at two opposite corners of the image, each buffer widened by the filter's
     /// reach on its inner sides (as [`round_splatted`] makes it), footprints of 0 to 6
     /// pixels per axis (both the four-lane path and the wider one). (On a processor
@@ -353,7 +386,13 @@ mod tests {
                 if n % 5 == 0 {
                     p = ((p * 2.0).floor() / 2.0).min(lo + size - 0.5);
                 }
-                let l = Spectrum::new(rng.next_f32(), 3.0 * rng.next_f32(), 0.0);
+                // Some samples bring no light (with signed zeros too), which add only
+                // their weights.
+                let l = match n % 6 {
+                    0 => Spectrum::ZERO,
+                    1 => Spectrum::new(-0.0, 0.0, -0.0),
+                    _ => Spectrum::new(rng.next_f32(), 3.0 * rng.next_f32(), 0.0),
+                };
                 lanes.splat(Lanes::BASELINE, &prepared, (w, h), p, l);
                 avx2.splat(Lanes::detect(), &prepared, (w, h), p, l);
                 let (mut wx, mut wy) = ([0.0; FOOTPRINT_LANES], [0.0; FOOTPRINT_LANES]);
