@@ -166,12 +166,12 @@ impl PreparedFilter {
         (lo as u32, n)
     }
 
-    /// [`span`](Self::span) of both axes of `p` in an image `width` × `height`, bit for
-    /// bit: on x86-64 the four ends of the two footprints are rounded in one vector
+    /// [`span`](Self::span) of both axes of `p` in an image `width` × `height`, exactly:
+    /// on x86-64 the four ends of the two footprints are rounded in one vector
     /// (truncation, then one up or down where it fell short), where the scalar rounding
     /// takes two conversions and a comparison per end, each conversion with the checks
-    /// of Rust's saturating `as`. Positions beyond [`I32_SAFE`] (and NaN) take the
-    /// scalar path.
+    /// of Rust's saturating `as`. Where any end is NaN or not below [`I32_SAFE`] in
+    /// magnitude, both axes take the scalar path.
     #[inline(always)]
     fn spans(&self, p: Vec2, (width, height): (u32, u32)) -> Spans64 {
         #[cfg(target_arch = "x86_64")]

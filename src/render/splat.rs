@@ -96,6 +96,9 @@ struct SplatBuffer {
     sums: Vec<f64>,
 }
 
+// `add_rows`'s bounds check relies on a 64-bit usize (x86-64 and aarch64 have one).
+const _: () = assert!(usize::BITS == 64);
+
 /// Sums per cell: W, Σw², Σw·x (r, g, b), Σ(w·x)·x (r, g, b).
 const PLANES: usize = 8;
 
@@ -179,16 +182,16 @@ impl SplatBuffer {
     #[inline(always)]
     fn splat_lanes(&mut self, filter: &PreparedFilter, (w, h): (u32, u32), p: Vec2, l: Spectrum) {
         if l == Spectrum::ZERO {
-            self.splat_weights::<false>(filter, (w, h), p, DVec3::ZERO);
+            self.splat_sums::<false>(filter, (w, h), p, DVec3::ZERO);
         } else {
-            self.splat_weights::<true>(filter, (w, h), p, l.as_dvec3());
+            self.splat_sums::<true>(filter, (w, h), p, l.as_dvec3());
         }
     }
 
     /// [`splat_lanes`](Self::splat_lanes) for radiance `x`, all eight sums where `LIT`,
     /// else only w and w² (for `x` zero).
     #[inline(always)]
-    fn splat_weights<const LIT: bool>(
+    fn splat_sums<const LIT: bool>(
         &mut self,
         filter: &PreparedFilter,
         (w, h): (u32, u32),
@@ -249,7 +252,10 @@ impl SplatBuffer {
             let row = ((yl + j as u32 - *y0) * *width + xl - *x0) as usize;
             for (g, wx4) in wx.chunks_exact(4).enumerate() {
                 let at = row + 4 * g;
-                assert!(at + 4 <= stride, "a footprint beyond the tile's buffer");
+                // `at` < 2³² + 40 (from u32 rows), so `at + 4` cannot wrap (usize is 64
+                // bits, below).
+                let end = at + 4;
+                assert!(end <= stride, "a footprint beyond the tile's buffer");
                 let wt: [f64; 4] = std::array::from_fn(|k| (wyj * wx4[k]) as f64);
                 let adds: [[f64; 4]; PLANES] = [
                     wt,
@@ -263,16 +269,16 @@ impl SplatBuffer {
                 ];
                 let used = if LIT { PLANES } else { 2 };
                 for (k, add) in adds.iter().enumerate().take(used) {
-                    let cells = k * stride + at..k * stride + at + 4;
-                    // SAFETY: k < PLANES and at + 4 ≤ stride (both checked above, once
-                    // per group rather than once per plane), so `cells` lies within
-                    // `sums`, PLANES × stride long.
-                    let sums = unsafe { sums.get_unchecked_mut(cells) };
-                    for (sum, t) in sums.iter_mut().zip(add) {
+                    let cells = k * stride + at..k * stride + end;
+                    // SAFETY: k < PLANES (`adds` has PLANES rows) and end ≤ stride
+                    // (checked once per group rather than once per plane), so `cells`
+                    // lies within `sums`, PLANES × stride long (asserted above).
+                    let group = unsafe { sums.get_unchecked_mut(cells) };
+                    for (sum, t) in group.iter_mut().zip(add) {
                         *sum += t;
                     }
                 }
-                for (n, &w) in count[at..at + 4].iter_mut().zip(&wt) {
+                for (n, &w) in count[at..end].iter_mut().zip(&wt) {
                     *n += (w > 0.0) as u32;
                 }
             }
@@ -298,143 +304,4 @@ impl SplatBuffer {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::image::Filter;
-    use crate::sampling::rng::Rng32;
-
-    /// The sums of one cell (count, then the eight planes).
-    fn cell(buf: &SplatBuffer, i: usize) -> (u32, [f64; PLANES]) {
-        let stride = buf.stride();
-        (
-            buf.count[i],
-            std::array::from_fn(|k| buf.sums[k * stride + i]),
-        )
-    }
-
-    #[test]
-    fn sums_are_the_weighted_moments() {
-        // A tent of radius 1 on a 1 × 1 image: a sample at (0.5, 0) weighs 1 · 0.5, one
-        // at (0, 0) 0.5 · 0.5 (the footprint clamped to the one pixel).
-        let filter = Filter::TENT.prepare();
-        let mut buf = SplatBuffer::new((0, 0, 1, 1));
-        let samples = [
-            (Vec2::new(0.5, 0.0), Spectrum::new(1.0, 2.0, 3.0), 0.5f32),
-            (Vec2::new(0.0, 0.0), Spectrum::new(3.0, 0.0, 1.0), 0.25),
-        ];
-        for (p, l, _) in samples {
-            buf.splat(Lanes::detect(), &filter, (1, 1), p, l);
-        }
-        let stats = buf.stats(0);
-        assert_eq!(stats.count, 2);
-        assert_eq!(stats.weight, 0.75);
-        assert_eq!(stats.weight2, 0.3125);
-        // Weighted mean (0.5·(1,2,3) + 0.25·(3,0,1)) / 0.75 and Σw(x − mean)².
-        let mean = Spectrum::new(5.0 / 3.0, 4.0 / 3.0, 7.0 / 3.0);
-        assert!((stats.mean - mean).abs().max_element() < 1e-6);
-        let m2 = samples.iter().fold(Spectrum::ZERO, |m, &(_, l, w)| {
-            m + w * (l - mean) * (l - mean)
-        });
-        assert!(
-            (stats.m2 - m2).abs().max_element() < 1e-5,
-            "{} vs {m2}",
-            stats.m2
-        );
-    }
-
-    /// The plane-by-plane sums, with and without AVX2, are bit for bit those of adding
-    /// each sample to each cell it reaches with a positive weight, one cell at a time
-    /// (all eight terms, also for samples of radiance zero):
-    /// tiles at two opposite corners of the image, each buffer widened by the filter's
-    /// reach on its inner sides (as [`round_splatted`] makes it), footprints of 0 to 6
-    /// pixels per axis (both the four-lane path and the wider one). (On a processor
-    /// without AVX2 both buffers take the baseline.)
-    #[test]
-    fn lanes_are_the_cell_by_cell_sums() {
-        let (w, h) = (13, 11);
-        for (x0, y0, x1, y1) in [(0, 4, 6, h), (7, 0, w, 5)] {
-            splat_tile(w, h, (x0, y0, x1, y1));
-        }
-    }
-
-    fn splat_tile(w: u32, h: u32, (x0, y0, x1, y1): Tile) {
-        let filters = [
-            Filter::default(),
-            Filter::TENT,
-            Filter::GAUSSIAN,
-            Filter::Gaussian { stddev: 0.3 },
-            Filter::Tent { radius: 2.5 },
-            // Narrower than half a pixel: a sample may reach no pixel at all.
-            Filter::Box { radius: 0.3 },
-        ];
-        let mut rng = Rng32::new(7);
-        let mut reached = 0;
-        for filter in filters {
-            let reach = filter.radius().ceil() as u32;
-            let around = || SplatBuffer::around((x0, y0, x1, y1), reach, (w, h));
-            let (mut lanes, mut avx2, mut reference) = (around(), around(), around());
-            let rows = (reference.cells as u32) / reference.width;
-            let (bx0, by0) = (reference.x0, reference.y0);
-            let (bx1, by1) = (bx0 + reference.width, by0 + rows);
-            let prepared = filter.prepare();
-            for n in 0..400 {
-                // Film positions in the tile's pixels [x0, x1) × [y0, y1), some on
-                // pixel edges and centres exactly.
-                let lo = Vec2::new(x0 as f32, y0 as f32);
-                let size = Vec2::new((x1 - x0) as f32, (y1 - y0) as f32);
-                let mut p = lo + size * Vec2::new(rng.next_f32(), rng.next_f32());
-                if n % 5 == 0 {
-                    p = ((p * 2.0).floor() / 2.0).min(lo + size - 0.5);
-                }
-                // Some samples bring no light (with signed zeros too), which add only
-                // their weights.
-                let l = match n % 6 {
-                    0 => Spectrum::ZERO,
-                    1 => Spectrum::new(-0.0, 0.0, -0.0),
-                    _ => Spectrum::new(rng.next_f32(), 3.0 * rng.next_f32(), 0.0),
-                };
-                lanes.splat(Lanes::BASELINE, &prepared, (w, h), p, l);
-                avx2.splat(Lanes::detect(), &prepared, (w, h), p, l);
-                let (mut wx, mut wy) = ([0.0; FOOTPRINT_LANES], [0.0; FOOTPRINT_LANES]);
-                let (xl, nx) = prepared.weights(p.x, w, &mut wx);
-                let (yl, ny) = prepared.weights(p.y, h, &mut wy);
-                for (j, &wyj) in wy[..ny].iter().enumerate() {
-                    for (k, &wxk) in wx[..nx].iter().enumerate() {
-                        let (x, y) = (xl + k as u32, yl + j as u32);
-                        assert!((bx0..bx1).contains(&x) && (by0..by1).contains(&y));
-                        let wt = wyj * wxk;
-                        if wt > 0.0 {
-                            let i = ((y - by0) * reference.width + x - bx0) as usize;
-                            let stride = reference.stride();
-                            let (wt, x) = (wt as f64, l.as_dvec3());
-                            let terms = [
-                                wt,
-                                wt * wt,
-                                wt * x.x,
-                                wt * x.y,
-                                wt * x.z,
-                                (wt * x.x) * x.x,
-                                (wt * x.y) * x.y,
-                                (wt * x.z) * x.z,
-                            ];
-                            for (k, t) in terms.into_iter().enumerate() {
-                                reference.sums[k * stride + i] += t;
-                            }
-                            reference.count[i] += 1;
-                        }
-                    }
-                }
-            }
-            for i in 0..reference.cells {
-                let want = cell(&reference, i);
-                assert_eq!(cell(&lanes, i), want, "{filter:?}, cell {i}");
-                assert_eq!(cell(&avx2, i), want, "{filter:?}, cell {i} (AVX2)");
-                if filter.radius() >= 0.5 {
-                    reached += want.0;
-                }
-            }
-        }
-        // Every splat of the filters at least half a pixel wide reaches its own pixel.
-        assert!(reached >= 5 * 400, "{reached} splats");
-    }
-}
+mod tests;
