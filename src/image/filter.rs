@@ -113,8 +113,21 @@ impl Filter {
         } else {
             (crate::math::ceil(t0) as i64, crate::math::floor(t1) as i64)
         };
-        (lo.max(0), hi.min(size as i64 - 1))
+        clamp_ends(lo, hi, size)
     }
+}
+
+/// A footprint's ends [lo, hi] clamped to the pixels [0, size).
+#[inline(always)]
+fn clamp_ends(lo: i64, hi: i64, size: u32) -> (i64, i64) {
+    (lo.max(0), hi.min(size as i64 - 1))
+}
+
+/// A clamped footprint [lo, hi] as its first pixel and pixel count (at most
+/// [`MAX_FOOTPRINT`]).
+#[inline(always)]
+fn counted((lo, hi): (i64, i64)) -> (i64, usize) {
+    (lo, ((hi - lo + 1).max(0) as usize).min(MAX_FOOTPRINT))
 }
 
 /// Most pixels a filter reaches along one axis (radius ≤ 16, as [`Filter::validate`]
@@ -179,12 +192,11 @@ impl PreparedFilter {
             let r = self.filter.radius();
             let ends = Vec4::new(p.x - 0.5 - r, p.x - 0.5 + r, p.y - 0.5 - r, p.y - 0.5 + r);
             if ends.abs().cmplt(Vec4::splat(I32_SAFE)).all() {
-                let [x0, x1, y0, y1] = round_ends(ends);
-                let clamp = |lo: i32, hi: i32, size: u32| {
-                    let (lo, hi) = ((lo as i64).max(0), (hi as i64).min(size as i64 - 1));
-                    (lo, ((hi - lo + 1).max(0) as usize).min(MAX_FOOTPRINT))
-                };
-                return (clamp(x0, x1, width), clamp(y0, y1, height));
+                let [x0, x1, y0, y1] = round_ends(ends).map(i64::from);
+                return (
+                    counted(clamp_ends(x0, x1, width)),
+                    counted(clamp_ends(y0, y1, height)),
+                );
             }
         }
         (self.span(p.x, width), self.span(p.y, height))
@@ -194,8 +206,7 @@ impl PreparedFilter {
     /// reaches in an image `size` pixels long (the footprint, clamped).
     #[inline(always)]
     fn span(&self, p: f32, size: u32) -> (i64, usize) {
-        let (lo, hi) = self.filter.footprint(p, size);
-        (lo, ((hi - lo + 1).max(0) as usize).min(MAX_FOOTPRINT))
+        counted(self.filter.footprint(p, size))
     }
 
     /// [`weights`](Self::weights) along both axes of an image `size` pixels wide and

@@ -45,12 +45,12 @@ fn sums_are_the_weighted_moments() {
 }
 
 /// The plane-by-plane sums, with and without AVX2, are bit for bit those of adding
-/// each sample to each cell it reaches with a positive weight, one cell at a time,
-/// all eight terms (also for samples of radiance zero): tiles at two opposite
-/// corners of the image, each buffer widened by the filter's
-/// reach on its inner sides (as [`round_splatted`] makes it), footprints of 0 to 6
-/// pixels per axis (both the four-lane path and the wider one). (On a processor
-/// without AVX2 both buffers take the baseline.)
+/// each sample to each cell it reaches with a positive weight, one cell at a time, all
+/// eight terms (also for samples of radiance zero): tiles at two opposite corners of
+/// the image, each buffer widened by the filter's reach on its inner sides (as
+/// [`round_splatted`] makes it), footprints of 0 to 6 pixels per axis (both the
+/// four-lane path and the wider one). (On a processor without AVX2 both buffers take
+/// the baseline.)
 #[test]
 fn lanes_are_the_cell_by_cell_sums() {
     let (w, h) = (13, 11);
