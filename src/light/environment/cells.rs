@@ -80,21 +80,29 @@ impl CellDistribution {
         }
     }
 
-    /// A point of the cell grid of `image` (its density is [`CellDistribution::pdf`],
-    /// which the caller evaluates from the direction the point becomes).
+    /// A point of the cell grid of `image`, with the image cell it lies in, that cell's
+    /// corner texels and the point's density ([`CellDistribution::pdf`] of the same
+    /// point, up to rounding).
     #[inline]
-    pub fn sample(&self, u: Vec2, image: &LatLongImage) -> Vec2 {
-        let ((i, j), _, reused) = self.cells.sample_cell(u);
+    pub fn sample(&self, u: Vec2, image: &LatLongImage) -> CellSample {
+        let ((i, j), pmf, reused) = self.cells.sample_cell(u);
         // A reused number is exactly 0 when u hits a CDF entry (about 1 sample in 10⁶ of
         // f32 numbers); the bilinear warp would put it on the cell's edge, where a zero
         // corner gives density 0. Move it to 2⁻²⁴, the next number a uniform f32 takes.
         let reused = reused.max(Vec2::splat(0.5 * f32::EPSILON));
-        let corners = self.corner_weights(&image.corners(&TexelCell::new(i, j)));
-        let (p, _) = square_to_bilinear(reused, corners);
-        Vec2::new(
-            ((i as f32 + p.x) / self.width as f32).min(ONE_MINUS_EPSILON),
-            ((j as f32 + p.y) / self.rows as f32).min(ONE_MINUS_EPSILON),
-        )
+        let texels = image.corners(&TexelCell::new(i, j));
+        let (p, inside) = square_to_bilinear(reused, self.corner_weights(&texels));
+        CellSample {
+            grid: Vec2::new(
+                ((i as f32 + p.x) / self.width as f32).min(ONE_MINUS_EPSILON),
+                ((j as f32 + p.y) / self.rows as f32).min(ONE_MINUS_EPSILON),
+            ),
+            // Cell i of the grid lies between texel columns i and i + 1, as the image's
+            // cell i does: the point is at p in both.
+            cell: TexelCell { i, j, f: p },
+            texels,
+            density: pmf * (self.width * self.rows) as f32 * inside,
+        }
     }
 
     /// The density of [`CellDistribution::sample`] per unit area at the point `cell.f`
@@ -108,6 +116,18 @@ impl CellDistribution {
         let inside = cell.f.clamp(Vec2::ZERO, Vec2::ONE);
         pmf * (self.width * self.rows) as f32 * bilinear_pdf(inside, self.corner_weights(texels))
     }
+}
+
+/// A point drawn by [`CellDistribution::sample`].
+pub(super) struct CellSample {
+    /// The point on the cell grid, in [0, 1)².
+    pub grid: Vec2,
+    /// The image cell it lies in, and where in it.
+    pub cell: TexelCell,
+    /// That cell's corner texels, `[t00, t10, t01, t11]`.
+    pub texels: [Spectrum; 4],
+    /// Its density per unit area of the grid.
+    pub density: f32,
 }
 
 /// A texel's sampling weight: max(0, max(0, luminance) − offset) · scale.
@@ -204,8 +224,24 @@ mod tests {
                 ((k as f32 + 0.5) * 0.618_034).fract(),
                 (k as f32 + 0.5) / 500.0,
             );
-            let p = d.sample(u, &img);
+            let drawn = d.sample(u, &img);
+            let p = drawn.grid;
             assert!(pdf_at(&d, &img, p) > 0.0, "{u}: {p}");
+            // Its cell holds the grid point, and the density it carries is the cell's
+            // density there.
+            let (cell, f) = (drawn.cell, drawn.cell.f);
+            let at = Vec2::new(cell.i as f32, cell.j as f32) + f;
+            assert!(
+                (p * Vec2::new(w as f32, (h - 1) as f32) - at).length() < 1e-5,
+                "{u}"
+            );
+            let there = d.pdf(&drawn.cell, &drawn.texels);
+            assert!(
+                (drawn.density - there).abs() <= 1e-5 * there,
+                "{u}: {} vs {there}",
+                drawn.density
+            );
+            assert_eq!(drawn.texels, img.corners(&cell), "{u}");
         }
         // With an offset, texels at or below it weigh nothing.
         let above = CellDistribution::new(&texels, 3.5, w, h).expect("valid");
@@ -214,7 +250,7 @@ mod tests {
                 ((k as f32 + 0.5) * 0.618_034).fract(),
                 (k as f32 + 0.5) / 500.0,
             );
-            let p = above.sample(u, &img);
+            let p = above.sample(u, &img).grid;
             let x = p * Vec2::new(w as f32, (h - 1) as f32);
             let cell = TexelCell::new(x.x as usize, x.y as usize);
             assert!(img.corners(&cell).iter().any(|t| t.x > 3.5), "{p}");
@@ -250,7 +286,7 @@ mod tests {
         for a in 0..=64 {
             for b in 0..=64 {
                 let u = Vec2::new(a as f32, b as f32) / 64.0;
-                let p = d.sample(u.min(Vec2::splat(ONE_MINUS_EPSILON)), &img);
+                let p = d.sample(u.min(Vec2::splat(ONE_MINUS_EPSILON)), &img).grid;
                 assert!(pdf_at(&d, &img, p) > 0.0, "{u}: {p} has density 0");
             }
         }
@@ -260,7 +296,7 @@ mod tests {
     fn an_all_zero_map_is_uniform() {
         let img = image(4, 3, &[0.0; 12]);
         let d = CellDistribution::new(&[0.0; 12], 0.0, 4, 3).expect("valid");
-        let p = d.sample(Vec2::new(0.3, 0.6), &img);
+        let p = d.sample(Vec2::new(0.3, 0.6), &img).grid;
         assert!((p - Vec2::new(0.3, 0.6)).length() < 1e-6, "{p}");
         assert!((pdf_at(&d, &img, p) - 1.0).abs() < 1e-6, "{p}");
     }

@@ -165,26 +165,31 @@ impl Environment {
                 Some((w, *l * self.scale, pdf))
             }
             Radiance::Map { image, .. } => {
-                let cell = self.distribution(compensate)?.sample(u, image);
-                let x = cell.x + image.half_texel();
-                let uv = Vec2::new(x - floor(x), cell.y);
+                let drawn = self.distribution(compensate)?.sample(u, image);
+                let x = drawn.grid.x + image.half_texel();
+                let uv = Vec2::new(x - floor(x), drawn.grid.y);
                 let (local, sin_t) = uv_to_direction(uv);
                 if sin_t <= 0.0 {
                     return None;
                 }
-                // Density and radiance are taken from the direction itself (not from the
-                // sampled uv), so a BSDF-sampled ray that finds this direction gets
-                // bit-identical values for its MIS weight.
+                // Radiance and density from the cell and texels the point was drawn in,
+                // as pbrt-v4 and Mitsuba 3 do, not from the direction's own image
+                // coordinates (two atan2 away), which find the same point up to rounding:
+                // a BSDF-sampled ray along this direction (`eval_pdf`) gets the same
+                // values for its MIS weight, except near a cell's edge where the density
+                // falls to zero, which that rounding moves by more than 10⁻³ relative
+                // (about one sample in 10⁶, tests/chi2_environment.rs).
                 let w = (self.to_world * local).normalize();
-                let (radiance, pdf) = self.eval_pdf(w, compensate);
+                let radiance = bilerp(&drawn.texels, drawn.cell.f) * self.scale;
+                let pdf = drawn.density / (2.0 * PI * PI * sin_t);
                 (pdf > 0.0).then_some((w, radiance, pdf))
             }
         }
     }
 
     /// [`Environment::eval`] and [`Environment::pdf`] of one direction, bit for bit,
-    /// finding its image coordinates once (two `atan2` instead of four: a light sample
-    /// and a BSDF-sampled ray that escapes each need both).
+    /// finding its image coordinates once (two `atan2` instead of four: a BSDF-sampled
+    /// ray that escapes needs both).
     #[inline]
     pub fn eval_pdf(&self, w: Vec3, compensate: bool) -> (Spectrum, f32) {
         match &self.radiance {
