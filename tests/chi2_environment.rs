@@ -8,7 +8,9 @@ mod common;
 
 use common::chi2::{SEED, checked, report_all, sidak_alpha};
 use glam::{Mat3, Vec2, Vec3};
-use lightlab::light::environment::{Environment, LatLongImage, SkyParameters, procedural_sky};
+use lightlab::light::environment::{
+    Environment, EnvironmentSource, LatLongImage, SkyParameters, procedural_sky,
+};
 use lightlab::math::Spectrum;
 use lightlab::sampling::chi2::{Domain, integrate_pdf};
 use lightlab::sampling::{Rng32, Uniform};
@@ -92,10 +94,9 @@ fn environment_sampling_passes_chi_square() {
     let alpha = sidak_alpha(cases.len());
     let mut verdicts = Vec::new();
     for (name, env, compensate) in &cases {
-        // The histogram of the directions against `pdf`. The density a sample carries
-        // is checked against `pdf` by `samples_carry_the_pdf_and_radiance_of_their_
-        // direction` (all but about one sample in 10⁶ within 2·10⁻³, see there), so the
-        // harness's check of every sample's density is given `pdf`'s value.
+        // The histogram of the directions against `pdf`. The density each sample
+        // carries is checked against `pdf` by the test below (all but about one sample
+        // in 10⁶ within 2·10⁻³, see there), so the harness gets `pdf`'s value.
         let mut sample = |r: &mut Rng32| match env.sample(r.next_2d(), *compensate) {
             Some((w, _, _)) => (w, env.pdf(w, *compensate)),
             None => (Vec3::NAN, 0.0),
@@ -121,6 +122,20 @@ fn environment_pdf_integrates_to_one() {
     }
 }
 
+/// Whether `w` lies within 10⁻³ rad of a pole of the map's own frame, where the
+/// azimuth u is ill-conditioned: rounding the direction by 10⁻⁷ rad there moves u by up
+/// to 10⁻⁴ of a turn, into another cell (seen on the rotated map, whose poles are not
+/// on the world's axes: 4 samples in 4·10⁵ with another seed).
+fn near_pole(env: &Environment, w: Vec3) -> bool {
+    match env.source() {
+        EnvironmentSource::Map { to_world, .. } => {
+            let local = to_world.transpose() * w;
+            local.x.hypot(local.z) < 1e-3
+        }
+        EnvironmentSource::Constant(_) => false,
+    }
+}
+
 #[test]
 fn samples_carry_the_pdf_and_radiance_of_their_direction() {
     for (name, env, compensate) in cases() {
@@ -135,23 +150,23 @@ fn samples_carry_the_pdf_and_radiance_of_their_direction() {
                 "{name}: |w| = {}",
                 w.length()
             );
-            let p = env.pdf(w, compensate);
-            if (p - pdf).abs() > 2e-3 * pdf {
-                apart.push(format!("sample pdf {pdf}, pdf() {p} at {w}"));
+            let (p, e) = (env.pdf(w, compensate), env.eval(w));
+            let pdf_apart = (p - pdf).abs() > 2e-3 * pdf;
+            let radiance_apart = (e - l).abs().max_element() > 1e-3 * l.max_element().max(1e-3);
+            if (pdf_apart || radiance_apart) && !near_pole(&env, w) {
+                apart.push(format!(
+                    "sample: {l}, pdf {pdf}; eval(), pdf(): {e}, {p}; at {w}"
+                ));
             }
-            let e = env.eval(w);
-            assert!(
-                (e - l).abs().max_element() <= 1e-3 * l.max_element().max(1e-3),
-                "{name}: {l} vs {e}"
-            );
             assert!(pdf > 0.0 && l.max_element() > 0.0 || name == "envmap-one-bright-texel");
         }
-        // A sample's density is its cell's at the point drawn; `pdf` finds the point
-        // again from the direction, about 10⁻⁷ rad away after rounding. Where the density
-        // falls to zero at a cell's edge (a black texel), that moves it by more than
-        // 2·10⁻³ relative, for about one sample in 10⁶ (3 of 2·10⁶ of the sky's, all
-        // within 10⁻³ of a row's edge; none of the random map's). A density 0.3 % off
-        // everywhere fails, as does one wrong where more than 1 sample in 10⁵ lands.
+        // A sample's density and radiance are its cell's at the point drawn; `pdf` and
+        // `eval` find the point again from the direction, a few 10⁻⁷ rad away after
+        // rounding (more on wider maps). Where the density falls to zero at a cell's
+        // edge (a black texel), that moves them by more than the bounds, for a few
+        // samples in 10⁶ of these maps (≤ 64 texels wide: at most 3 of 4·10⁵ over eight
+        // seeds, the sky's, near a row's edge). A density 0.3 % off everywhere fails, as
+        // does one wrong where more than one sample in 10⁵ lands.
         assert!(
             apart.len() * 100_000 <= samples,
             "{name}: {} of {samples} samples disagree with pdf(), first:\n{}",

@@ -81,8 +81,8 @@ impl CellDistribution {
     }
 
     /// A point of the cell grid of `image`, with the image cell it lies in, that cell's
-    /// corner texels and the point's density ([`CellDistribution::pdf`] of the same
-    /// point, up to rounding).
+    /// corner texels and the point's density (exactly [`CellDistribution::pdf`] of that
+    /// cell and point).
     #[inline]
     pub fn sample(&self, u: Vec2, image: &LatLongImage) -> CellSample {
         let ((i, j), pmf, reused) = self.cells.sample_cell(u);
@@ -101,7 +101,7 @@ impl CellDistribution {
             // cell i does: the point is at p in both.
             cell: TexelCell { i, j, f: p },
             texels,
-            density: pmf * (self.width * self.rows) as f32 * inside,
+            pdf: self.grid_pdf(pmf, inside),
         }
     }
 
@@ -114,20 +114,27 @@ impl CellDistribution {
             return 0.0;
         }
         let inside = cell.f.clamp(Vec2::ZERO, Vec2::ONE);
-        pmf * (self.width * self.rows) as f32 * bilinear_pdf(inside, self.corner_weights(texels))
+        self.grid_pdf(pmf, bilinear_pdf(inside, self.corner_weights(texels)))
+    }
+
+    /// The density per unit area of the grid of a point inside a cell of probability
+    /// `pmf` with density `inside` per unit area of the cell.
+    #[inline]
+    fn grid_pdf(&self, pmf: f32, inside: f32) -> f32 {
+        pmf * (self.width * self.rows) as f32 * inside
     }
 }
 
 /// A point drawn by [`CellDistribution::sample`].
 pub(super) struct CellSample {
     /// The point on the cell grid, in [0, 1)².
-    pub grid: Vec2,
+    pub(super) grid: Vec2,
     /// The image cell it lies in, and where in it.
-    pub cell: TexelCell,
+    pub(super) cell: TexelCell,
     /// That cell's corner texels, `[t00, t10, t01, t11]`.
-    pub texels: [Spectrum; 4],
+    pub(super) texels: [Spectrum; 4],
     /// Its density per unit area of the grid.
-    pub density: f32,
+    pub(super) pdf: f32,
 }
 
 /// A texel's sampling weight: max(0, max(0, luminance) − offset) · scale.
@@ -227,21 +234,17 @@ mod tests {
             let drawn = d.sample(u, &img);
             let p = drawn.grid;
             assert!(pdf_at(&d, &img, p) > 0.0, "{u}: {p}");
-            // Its cell holds the grid point, and the density it carries is the cell's
-            // density there.
-            let (cell, f) = (drawn.cell, drawn.cell.f);
-            let at = Vec2::new(cell.i as f32, cell.j as f32) + f;
-            assert!(
-                (p * Vec2::new(w as f32, (h - 1) as f32) - at).length() < 1e-5,
-                "{u}"
-            );
+            // Its cell is where a lookup of the grid point's image coordinates finds it
+            // (up to rounding, and a whole turn in u: the last column's cells wrap), and
+            // the density it carries is its cell's density there.
+            let x = p.x + img.half_texel();
+            let found = img.locate(Vec2::new(x - x.floor(), p.y));
+            let at = |c: &TexelCell| Vec2::new(c.i as f32, c.j as f32) + c.f;
+            let gap = at(&found) - at(&drawn.cell);
+            let turns = (gap.x / w as f32).round() * w as f32;
+            assert!((gap - Vec2::new(turns, 0.0)).length() < 1e-4, "{u}: {gap}");
             let there = d.pdf(&drawn.cell, &drawn.texels);
-            assert!(
-                (drawn.density - there).abs() <= 1e-5 * there,
-                "{u}: {} vs {there}",
-                drawn.density
-            );
-            assert_eq!(drawn.texels, img.corners(&cell), "{u}");
+            assert_eq!(drawn.pdf.to_bits(), there.to_bits(), "{u}");
         }
         // With an offset, texels at or below it weigh nothing.
         let above = CellDistribution::new(&texels, 3.5, w, h).expect("valid");

@@ -172,16 +172,15 @@ impl Environment {
                 if sin_t <= 0.0 {
                     return None;
                 }
-                // Radiance and density from the cell and texels the point was drawn in,
-                // as pbrt-v4 and Mitsuba 3 do, not from the direction's own image
-                // coordinates (two atan2 away), which find the same point up to rounding:
-                // a BSDF-sampled ray along this direction (`eval_pdf`) gets the same
-                // values for its MIS weight, except near a cell's edge where the density
-                // falls to zero, which that rounding moves by more than 10⁻³ relative
-                // (about one sample in 10⁶, tests/chi2_environment.rs).
+                // Radiance and density of the point drawn, as pbrt-v4 and Mitsuba 3 take
+                // them from the sampled uv; not from the direction's image coordinates
+                // (two atan2 away). A BSDF-sampled ray along this direction (`eval_pdf`)
+                // finds the same point up to the rounding of its position, a few 10⁻⁷
+                // rad: the same values, but near a cell's edge where the density falls
+                // to zero (tests/chi2_environment.rs).
                 let w = (self.to_world * local).normalize();
-                let radiance = bilerp(&drawn.texels, drawn.cell.f) * self.scale;
-                let pdf = drawn.density / (2.0 * PI * PI * sin_t);
+                let radiance = self.radiance(&drawn.texels, drawn.cell.f);
+                let pdf = solid_angle_pdf(drawn.pdf, sin_t);
                 (pdf > 0.0).then_some((w, radiance, pdf))
             }
         }
@@ -199,7 +198,7 @@ impl Environment {
                 let local = self.to_local * w;
                 let cell = image.locate(direction_to_uv(local));
                 let texels = image.corners(&cell);
-                let radiance = bilerp(&texels, cell.f) * self.scale;
+                let radiance = self.radiance(&texels, cell.f);
                 (radiance, self.map_pdf(local, &cell, &texels, compensate))
             }
         }
@@ -224,7 +223,13 @@ impl Environment {
         if sin_t <= 0.0 {
             return 0.0;
         }
-        distribution.pdf(cell, texels) / (2.0 * PI * PI * sin_t)
+        solid_angle_pdf(distribution.pdf(cell, texels), sin_t)
+    }
+
+    /// The map's radiance at `f` in a cell with corner texels `texels`.
+    #[inline]
+    fn radiance(&self, texels: &[Spectrum; 4], f: Vec2) -> Spectrum {
+        bilerp(texels, f) * self.scale
     }
 
     /// Solid-angle density of [`Environment::sample`] choosing world direction `w`.
@@ -301,6 +306,13 @@ impl Environment {
     pub fn power(&self) -> f32 {
         PI * self.scene_radius * self.scene_radius * self.integral
     }
+}
+
+/// The solid-angle density of a direction at polar angle θ (`sin_t` = sin θ > 0) whose
+/// point of the cell grid has density `grid_pdf`: over the lat-long Jacobian 2π² sin θ.
+#[inline]
+fn solid_angle_pdf(grid_pdf: f32, sin_t: f32) -> f32 {
+    grid_pdf / (2.0 * PI * PI * sin_t)
 }
 
 /// The nearest rotation to `m` (Gram–Schmidt on its columns), or None if degenerate.
