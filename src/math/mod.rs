@@ -38,6 +38,20 @@ pub fn floor(x: f32) -> f32 {
     }
 }
 
+/// `i.rem_euclid(n)` for `n > 0`, without the division where `i` lies in [−n, n): the
+/// texel indices of lookups inside an image or one texel off its edge. A 64-bit division
+/// costs tens of cycles, on the critical path of every environment-map and bitmap lookup.
+#[inline]
+pub fn rem_euclid_near(i: i64, n: i64) -> i64 {
+    if (0..n).contains(&i) {
+        i
+    } else if (-n..0).contains(&i) {
+        i + n
+    } else {
+        i.rem_euclid(n)
+    }
+}
+
 /// `x.ceil()`, bit for bit, without a libm call (see [`floor`]).
 #[inline]
 pub fn ceil(x: f32) -> f32 {
@@ -94,6 +108,29 @@ mod tests {
         for x in values {
             assert_eq!(floor(x).to_bits(), x.floor().to_bits(), "floor({x:e})");
             assert_eq!(ceil(x).to_bits(), x.ceil().to_bits(), "ceil({x:e})");
+        }
+    }
+
+    #[test]
+    fn rem_euclid_near_is_rem_euclid() {
+        for n in [1i64, 2, 3, 7, 64, 1 << 40, i64::MAX] {
+            let (up, down) = (n.saturating_mul(3), n.saturating_mul(-3).saturating_sub(2));
+            let edges = [
+                0,
+                1,
+                n - 1,
+                n,
+                n.saturating_add(1),
+                -1,
+                -n,
+                -n - 1,
+                up,
+                down,
+            ];
+            let far = [i64::MIN, i64::MIN + 1, i64::MAX, i64::MAX - 1];
+            for i in edges.into_iter().chain(far).chain(-70..70) {
+                assert_eq!(rem_euclid_near(i, n), i.rem_euclid(n), "{i} mod {n}");
+            }
         }
     }
 }

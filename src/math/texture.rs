@@ -5,7 +5,7 @@
 
 use glam::{Affine2, Vec2};
 
-use super::Spectrum;
+use super::{Spectrum, rem_euclid_near};
 
 /// How lookups outside [0, 1) wrap.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -37,14 +37,14 @@ pub struct Texture {
 
 impl Texture {
     /// The texel index along an axis of `n` texels, wrapped.
-    #[inline]
+    #[inline(always)]
     fn wrap_index(&self, i: i64, n: u32) -> usize {
         let n = n as i64;
         (match self.wrap {
-            Wrap::Repeat => i.rem_euclid(n),
+            Wrap::Repeat => rem_euclid_near(i, n),
             Wrap::Clamp => i.clamp(0, n - 1),
             Wrap::Mirror => {
-                let m = i.rem_euclid(2 * n);
+                let m = rem_euclid_near(i, 2 * n);
                 if m < n { m } else { 2 * n - 1 - m }
             }
         }) as usize
@@ -59,12 +59,12 @@ impl Texture {
         let n = n as i64;
         let (a, b) = match self.wrap {
             Wrap::Repeat => {
-                let a = i.rem_euclid(n);
+                let a = rem_euclid_near(i, n);
                 (a, if a + 1 == n { 0 } else { a + 1 })
             }
             Wrap::Clamp => (i.clamp(0, n - 1), i.saturating_add(1).clamp(0, n - 1)),
             Wrap::Mirror => {
-                let m = i.rem_euclid(2 * n);
+                let m = rem_euclid_near(i, 2 * n);
                 let m1 = if m + 1 == 2 * n { 0 } else { m + 1 };
                 let fold = |m: i64| if m < n { m } else { 2 * n - 1 - m };
                 (fold(m), fold(m1))

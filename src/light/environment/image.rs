@@ -5,7 +5,7 @@
 use glam::{Vec2, Vec3};
 
 use crate::math::atan::atan2;
-use crate::math::{PI, Spectrum, floor, spectrum::luminance};
+use crate::math::{PI, Spectrum, floor, rem_euclid_near, spectrum::luminance};
 use crate::sampling::sampler::ONE_MINUS_EPSILON;
 
 use super::cells::cell_weights;
@@ -87,11 +87,6 @@ impl LatLongImage {
         })
     }
 
-    #[inline]
-    pub(super) fn texel(&self, i: usize, j: usize) -> Spectrum {
-        self.texels[j * self.width + i % self.width]
-    }
-
     /// The cell between texels that holds (u, v), and where in it: texel (i, j) is its
     /// corner at (0, 0), (i + 1 mod W, j + 1) the one at (1, 1).
     #[inline]
@@ -99,7 +94,7 @@ impl LatLongImage {
         let x = uv.x * self.width as f32 - 0.5;
         let y = (uv.y * (self.height - 1) as f32).clamp(0.0, (self.height - 1) as f32);
         let x0 = floor(x);
-        let i = (x0 as isize).rem_euclid(self.width as isize) as usize;
+        let i = rem_euclid_near(x0 as i64, self.width as i64) as usize;
         let j = (floor(y) as usize).min(self.height - 2);
         TexelCell {
             i,
@@ -108,15 +103,21 @@ impl LatLongImage {
         }
     }
 
-    /// The four texels at the corners of `cell`: `[t00, t10, t01, t11]`.
-    #[inline]
+    /// The four texels at the corners of `cell`: `[t00, t10, t01, t11]`, column i + 1
+    /// wrapping around to 0.
+    #[inline(always)]
     pub(super) fn corners(&self, cell: &TexelCell) -> [Spectrum; 4] {
-        let (i, j) = (cell.i, cell.j);
+        let w = self.width;
+        // Cells come with i < W (`locate` wraps it, the sampling grid has W columns):
+        // no division, but for a cell made otherwise.
+        let i0 = if cell.i < w { cell.i } else { cell.i % w };
+        let i1 = if i0 + 1 == w { 0 } else { i0 + 1 };
+        let (row0, row1) = (cell.j * w, (cell.j + 1) * w);
         [
-            self.texel(i, j),
-            self.texel(i + 1, j),
-            self.texel(i, j + 1),
-            self.texel(i + 1, j + 1),
+            self.texels[row0 + i0],
+            self.texels[row0 + i1],
+            self.texels[row1 + i0],
+            self.texels[row1 + i1],
         ]
     }
 
