@@ -38,20 +38,6 @@ pub fn floor(x: f32) -> f32 {
     }
 }
 
-/// `i.rem_euclid(n)` for `n > 0`, without the division where `i` lies in [−n, n): the
-/// texel indices of lookups inside an image or one texel off its edge. A 64-bit division
-/// costs tens of cycles, on the critical path of every environment-map and bitmap lookup.
-#[inline]
-pub fn rem_euclid_near(i: i64, n: i64) -> i64 {
-    if (0..n).contains(&i) {
-        i
-    } else if (-n..0).contains(&i) {
-        i + n
-    } else {
-        i.rem_euclid(n)
-    }
-}
-
 /// `x.ceil()`, bit for bit, without a libm call (see [`floor`]).
 #[inline]
 pub fn ceil(x: f32) -> f32 {
@@ -60,6 +46,21 @@ pub fn ceil(x: f32) -> f32 {
         if t < x { t + 1.0 } else { t.copysign(x) }
     } else {
         x.ceil()
+    }
+}
+
+/// `i.rem_euclid(n)` for `n > 0`, without the division where `i` lies in [−n, n): the
+/// texel indices of lookups inside an image or one texel off its edge. A 64-bit division
+/// costs tens of cycles, on the critical path of every environment-map and bitmap lookup.
+#[inline]
+pub fn rem_euclid_near(i: i64, n: i64) -> i64 {
+    debug_assert!(n > 0, "modulus {n}");
+    if (0..n).contains(&i) {
+        i
+    } else if (-n..0).contains(&i) {
+        i + n
+    } else {
+        i.rem_euclid(n)
     }
 }
 

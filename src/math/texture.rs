@@ -50,10 +50,11 @@ impl Texture {
         }) as usize
     }
 
-    /// [`Texture::wrap_index`] of `i` and of `i + 1`, with one division instead of two
-    /// (the bilinear lookup's two neighbouring texels along an axis). `i + 1` is taken
-    /// without overflow: at `i64::MAX` (a coordinate past 2⁶³ texels, where the lookup's
-    /// weight on it is 0) it is the texel that follows.
+    /// [`Texture::wrap_index`] of `i` and of `i + 1` (the bilinear lookup's two
+    /// neighbouring texels along an axis), with at most one division instead of two, and
+    /// none within one period of the texture. `i + 1` is taken without overflow: at
+    /// `i64::MAX` (a coordinate past 2⁶³ texels, where the lookup's weight on it is 0) it
+    /// is the texel that follows.
     #[inline]
     fn wrap_pair(&self, i: i64, n: u32) -> (usize, usize) {
         let n = n as i64;

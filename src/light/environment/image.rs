@@ -103,13 +103,13 @@ impl LatLongImage {
         }
     }
 
-    /// The four texels at the corners of `cell`: `[t00, t10, t01, t11]`, column i + 1
-    /// wrapping around to 0.
+    /// The four texels at the corners of `cell`: `[t00, t10, t01, t11]`, columns i and
+    /// i + 1 taken mod W.
     #[inline(always)]
     pub(super) fn corners(&self, cell: &TexelCell) -> [Spectrum; 4] {
         let w = self.width;
-        // Cells come with i < W (`locate` wraps it, the sampling grid has W columns):
-        // no division, but for a cell made otherwise.
+        // Cells come with i < W (`locate` wraps it, the sampling grid has W columns), so
+        // `%` is taken only for a cell made otherwise.
         let i0 = if cell.i < w { cell.i } else { cell.i % w };
         let i1 = if i0 + 1 == w { 0 } else { i0 + 1 };
         let (row0, row1) = (cell.j * w, (cell.j + 1) * w);
