@@ -95,8 +95,8 @@ fn environment_sampling_passes_chi_square() {
     let mut verdicts = Vec::new();
     for (name, env, compensate) in &cases {
         // The histogram of the directions against `pdf`. The density each sample
-        // carries is checked against `pdf` by the test below (all but about one sample
-        // in 10⁶ within 2·10⁻³, see there), so the harness gets `pdf`'s value.
+        // carries is checked against `pdf` by the test below (within 2·10⁻³ for all but
+        // at most one sample in 10⁵, see there), so the harness gets `pdf`'s value.
         let mut sample = |r: &mut Rng32| match env.sample(r.next_2d(), *compensate) {
             Some((w, _, _)) => (w, env.pdf(w, *compensate)),
             None => (Vec3::NAN, 0.0),
