@@ -38,6 +38,22 @@ fn scene(emit_every: usize) -> Geometry {
     Geometry::new(prims, Vec::new())
 }
 
+/// A uniform point of the box from `lo` of extent `size` (x, then y, then z drawn).
+fn point_in(rng: &mut Rng32, lo: Vec3, size: Vec3) -> Vec3 {
+    let x = rng.next_f32() * size.x + lo.x;
+    let y = rng.next_f32() * size.y + lo.y;
+    let z = rng.next_f32() * size.z + lo.z;
+    Vec3::new(x, y, z)
+}
+
+/// A ray from a uniform point of the box `(lo, size)` along a direction drawn in the
+/// unit cube from `d_lo`, normalised.
+fn random_ray(rng: &mut Rng32, (lo, size): (Vec3, Vec3), d_lo: Vec3) -> Ray {
+    let o = point_in(rng, lo, size);
+    let d = point_in(rng, d_lo, Vec3::ONE);
+    Ray::new(o, d.normalize())
+}
+
 #[test]
 fn emitter_hits_are_the_closest_hits_on_emitters() {
     // Emitters first (with and without escapes to tell), the closest hit (more than a
@@ -48,17 +64,12 @@ fn emitter_hits_are_the_closest_hits_on_emitters() {
         let mut rng = Rng32::new(17);
         let (mut seen, mut blocked, mut escaped) = (0, 0, 0);
         for _ in 0..20_000 {
-            let o = Vec3::new(
-                rng.next_f32() * 10.0 - 5.0,
-                rng.next_f32() * 3.0 + 0.01,
-                rng.next_f32() * 6.0 - 1.0,
+            let box_lo = Vec3::new(-5.0, 0.01, -1.0);
+            let ray = random_ray(
+                &mut rng,
+                (box_lo, Vec3::new(10.0, 3.0, 6.0)),
+                Vec3::splat(-0.5),
             );
-            let d = Vec3::new(
-                rng.next_f32() - 0.5,
-                rng.next_f32() - 0.5,
-                rng.next_f32() - 0.5,
-            );
-            let ray = Ray::new(o, d.normalize());
             let closest = g.intersect(&ray, f32::INFINITY);
             let expected = match closest {
                 Some(y) if y.light != NO_LIGHT => Some((y.prim, y.t)),
@@ -96,6 +107,81 @@ fn emitter_hits_are_the_closest_hits_on_emitters() {
         assert!(
             !emitters_first || emit_every == 0 || blocked > 100,
             "{blocked} hidden emitters"
+        );
+    }
+}
+
+/// A scene small enough to be tested without a tree: four spheres (the first emitting
+/// when `sphere_emits`), a floor and a rectangle light that a sphere half hides.
+fn small_scene(sphere_emits: bool) -> Geometry {
+    let mut prims: Vec<Primitive> = (0..4)
+        .map(|i| Primitive {
+            shape: Shape::Sphere(Sphere::new(
+                Vec3::new(i as f32 - 1.5, 0.6 + 0.2 * i as f32, 0.5 * (i % 2) as f32),
+                0.35,
+            )),
+            material: 0,
+            light: if sphere_emits && i == 0 { 1 } else { NO_LIGHT },
+        })
+        .collect();
+    let floor = Rectangle::new(Vec3::new(-5.0, 0.0, -5.0), Vec3::X * 10.0, Vec3::Z * 10.0);
+    let panel = Rectangle::new(Vec3::new(-1.0, 2.0, 0.0), Vec3::X * 2.0, Vec3::Z * 1.0);
+    for (rect, light) in [(floor, NO_LIGHT), (panel, 0)] {
+        prims.push(Primitive {
+            shape: Shape::Rectangle(rect.expect("rectangle")),
+            material: 0,
+            light,
+        });
+    }
+    // Padding to keep the emitters at most a quarter of the primitives.
+    for i in 0..2 {
+        prims.push(Primitive {
+            shape: Shape::Sphere(Sphere::new(Vec3::new(3.0 + i as f32, 0.3, -2.0), 0.3)),
+            material: 0,
+            light: NO_LIGHT,
+        });
+    }
+    Geometry::new(prims, Vec::new())
+}
+
+/// In a scene tested without a tree, the emitters-first query finds what the closest
+/// hit finds, and what the same scene's tree finds: the same primitive at the same
+/// distance, or nothing, for rays that meet a light, miss every light, or meet one
+/// behind something else; with an escape to tell, the closest hit decides.
+#[test]
+fn flat_emitter_hits_are_the_closest_hits_on_emitters() {
+    for sphere_emits in [false, true] {
+        let g = small_scene(sphere_emits);
+        assert!(g.is_flat() && g.flat_emitters.is_some());
+        let tree = small_scene(sphere_emits).without_flat();
+        let mut rng = Rng32::new(29);
+        let (mut seen, mut hidden, mut missed) = (0, 0, 0);
+        for _ in 0..40_000 {
+            let box_lo = Vec3::new(-3.0, 0.01, -2.0);
+            let d_lo = Vec3::new(-0.5, 0.0, -0.5);
+            let ray = random_ray(&mut rng, (box_lo, Vec3::new(6.0, 1.8, 4.0)), d_lo);
+            let expected = match g.intersect(&ray, f32::INFINITY) {
+                Some(y) if y.light != NO_LIGHT => Some((y.prim, y.t)),
+                _ => None,
+            };
+            let got = |g: &Geometry, tell_escape| match g.first_emitter(&ray, tell_escape) {
+                Along::Emitter(y) => Some((y.prim, y.t)),
+                Along::Escapes | Along::Blocked => None,
+            };
+            assert_eq!(got(&g, false), expected, "{ray:?}");
+            assert_eq!(got(&g, true), expected, "{ray:?}");
+            assert_eq!(got(&tree, false), expected, "{ray:?}");
+            let on_light = g
+                .flat_emitters
+                .as_ref()
+                .and_then(|e| e.closest_hit(&ray, 1e30));
+            seen += expected.is_some() as u32;
+            hidden += (on_light.is_some() && expected.is_none()) as u32;
+            missed += on_light.is_none() as u32;
+        }
+        assert!(
+            seen > 2_000 && hidden > 200 && missed > 10_000,
+            "{seen} lights seen, {hidden} hidden, {missed} rays missing every light"
         );
     }
 }
