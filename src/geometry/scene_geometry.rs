@@ -252,9 +252,12 @@ impl Geometry {
     /// only, so the emitter does not block itself), and one that meets none needs no
     /// traversal at all. In a scene without emitting shapes, an escape is one any-hit
     /// query. A blocker at exactly the emitter's distance, which the
-    /// closest-hit query would order by traversal, here leaves the emitter visible. A
-    /// scene tested without a tree ([`Geometry::is_flat`]) does the same with its
-    /// emitters' blocks and then all its blocks (see `first_emitter_flat`).
+    /// closest-hit query would order by traversal, here leaves the emitter visible; one
+    /// whose distance is NaN (a sphere too large to square its radius) blocks it, as it
+    /// blocks shadow rays. A scene tested without a tree ([`Geometry::is_flat`]) does
+    /// the same with its emitters' blocks and then all its blocks where the emitters
+    /// fill fewer blocks than the scene and no escape is asked (see
+    /// `first_emitter_flat`); otherwise it takes the closest hit.
     #[inline]
     pub fn first_emitter(&self, ray: &Ray, tell_escape: bool) -> Along {
         // With escapes to tell and emitters to find, the two queries (the emitters', then
@@ -282,11 +285,11 @@ impl Geometry {
     }
 
     /// [`Geometry::first_emitter`] in a scene tested without a tree. Where its emitters
-    /// fill fewer blocks than the scene and no escape is asked for, the emitters' blocks first
-    /// (usually one block: a ray that misses it needs nothing more), then an any-hit
-    /// pass over every block up to the emitter met; otherwise the closest hit, one pass
-    /// over every block. On the README's scene (a small light over seven shapes) the
-    /// closest hit and its shading data cost a BSDF ray about 335 instructions, and
+    /// fill fewer blocks than the scene and no escape is asked for: the emitters' blocks
+    /// first (usually one block: a ray that misses it needs nothing more), then an
+    /// any-hit pass over every block up to the emitter met. Otherwise the closest hit,
+    /// one pass over every block. On the README's scene (a small light over six shapes)
+    /// the closest hit and its shading data cost a BSDF ray about 335 instructions, and
     /// most BSDF rays miss the light.
     #[inline]
     fn first_emitter_flat(&self, ray: &Ray, tell_escape: bool) -> Along {

@@ -131,7 +131,7 @@ impl FlatShapes {
 
     /// The closest hit of `ray` in (0, t_max): the primitive's index and the hit. A ray
     /// that is not finite, or has no direction, hits nothing. Inlined into each caller:
-    /// left as a call, scenes with an environment took 0.8 % more instructions.
+    /// left as a call, `envmap_rotated.xml` took 0.8 % more instructions.
     #[inline(always)]
     pub fn closest_hit(&self, ray: &Ray, t_max: f32) -> Option<(u32, ShapeHit)> {
         if !usable(ray) {

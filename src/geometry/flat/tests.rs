@@ -4,6 +4,7 @@ use glam::{Vec2, Vec3};
 
 use super::*;
 use crate::geometry::bvh::PACKET;
+use crate::geometry::scene_geometry::Along;
 use crate::geometry::shape::{Disk, Rectangle, Sphere, Triangle};
 use crate::geometry::{Geometry, Mesh, NO_LIGHT};
 use crate::sampling::rng::Rng32;
@@ -142,6 +143,7 @@ fn scene(rng: &mut Rng32, n: usize, skip: usize) -> Vec<Primitive> {
 fn a_flat_scene_answers_as_its_bvh_does() {
     let mut rng = Rng32::new(12);
     let (mut hits, mut ties, mut blocked, mut open) = (0, 0, 0, 0);
+    let (mut lit, mut hidden) = (0, 0);
     for n in [1, 3, 4, 7, FLAT_MAX] {
         for round in 0..24 {
             // Three kinds in turn, or (every fourth scene) one kind alone, up to three
@@ -206,12 +208,40 @@ fn a_flat_scene_answers_as_its_bvh_does() {
                 let shadow = flat.occluded(&ray, t_max);
                 assert_eq!(shadow, tree.occluded(&ray, t_max), "{ray:?} {t_max}");
                 (blocked, open) = (blocked + shadow as u32, open + !shadow as u32);
+                // A BSDF ray's first emitter (the emitters' blocks first where they are
+                // fewer than the scene's) is the closest hit where it emits.
+                let (seen, closest) = first_emitter_and_closest(&flat, &ray);
+                assert_eq!(seen, closest, "{ray:?}");
+                lit += seen.is_some() as u32;
+                hidden += (seen.is_none() && flat.occluded(&ray, f32::INFINITY)) as u32;
             }
         }
     }
     assert!(hits > 5_000 && ties < hits / 50, "{hits} hits, {ties} ties");
     assert!(
+        lit > 1_000 && hidden > 1_000,
+        "{lit} emitters seen, {hidden} not"
+    );
+    assert!(
         blocked > 3_000 && open > 3_000,
         "{blocked} blocked, {open} open"
     );
+}
+
+/// An emitter met: its primitive and the bits of its distance.
+type Met = Option<(u32, u32)>;
+
+/// What `first_emitter` (no escape asked) reports of `ray`, and the closest hit where it
+/// emits.
+fn first_emitter_and_closest(g: &Geometry, ray: &Ray) -> (Met, Met) {
+    let seen = match g.first_emitter(ray, false) {
+        Along::Emitter(y) => Some((y.prim, y.t.to_bits())),
+        Along::Escapes => panic!("an escape reported without being asked"),
+        Along::Blocked => None,
+    };
+    let closest = g
+        .intersect(ray, f32::INFINITY)
+        .filter(|y| y.light != NO_LIGHT)
+        .map(|y| (y.prim, y.t.to_bits()));
+    (seen, closest)
 }

@@ -111,8 +111,9 @@ fn emitter_hits_are_the_closest_hits_on_emitters() {
     }
 }
 
-/// A scene small enough to be tested without a tree: four spheres (the first emitting
-/// when `sphere_emits`), a floor and a rectangle light that a sphere half hides.
+/// A scene small enough to be tested without a tree: six spheres (the first emitting
+/// when `sphere_emits`), a floor, a rectangle light that a sphere half hides, and a
+/// shelf below part of the light.
 fn small_scene(sphere_emits: bool) -> Geometry {
     let mut prims: Vec<Primitive> = (0..4)
         .map(|i| Primitive {
@@ -126,14 +127,17 @@ fn small_scene(sphere_emits: bool) -> Geometry {
         .collect();
     let floor = Rectangle::new(Vec3::new(-5.0, 0.0, -5.0), Vec3::X * 10.0, Vec3::Z * 10.0);
     let panel = Rectangle::new(Vec3::new(-1.0, 2.0, 0.0), Vec3::X * 2.0, Vec3::Z * 1.0);
-    for (rect, light) in [(floor, NO_LIGHT), (panel, 0)] {
+    let shelf = Rectangle::new(Vec3::new(-0.3, 1.7, 0.2), Vec3::X * 0.6, Vec3::Z * 0.4);
+    for (rect, light) in [(floor, NO_LIGHT), (panel, 0), (shelf, NO_LIGHT)] {
         prims.push(Primitive {
             shape: Shape::Rectangle(rect.expect("rectangle")),
             material: 0,
             light,
         });
     }
-    // Padding to keep the emitters at most a quarter of the primitives.
+    // Two more spheres: a second block of them, so that the scene's three blocks
+    // outnumber the emitters' two when a sphere emits, and the emitters stay at most a
+    // quarter of the primitives (the rule for the tree this scene is compared with).
     for i in 0..2 {
         prims.push(Primitive {
             shape: Shape::Sphere(Sphere::new(Vec3::new(3.0 + i as f32, 0.3, -2.0), 0.3)),
@@ -154,13 +158,18 @@ fn flat_emitter_hits_are_the_closest_hits_on_emitters() {
         let g = small_scene(sphere_emits);
         assert!(g.is_flat() && g.flat_emitters.is_some());
         let tree = small_scene(sphere_emits).without_flat();
+        assert!(
+            tree.emitters.is_some(),
+            "the tree tests its emitters first too"
+        );
         let mut rng = Rng32::new(29);
-        let (mut seen, mut hidden, mut missed) = (0, 0, 0);
+        let (mut seen, mut hidden, mut missed, mut shelved) = (0, 0, 0, 0);
         for _ in 0..40_000 {
             let box_lo = Vec3::new(-3.0, 0.01, -2.0);
             let d_lo = Vec3::new(-0.5, 0.0, -0.5);
             let ray = random_ray(&mut rng, (box_lo, Vec3::new(6.0, 1.8, 4.0)), d_lo);
-            let expected = match g.intersect(&ray, f32::INFINITY) {
+            let closest = g.intersect(&ray, f32::INFINITY);
+            let expected = match closest {
                 Some(y) if y.light != NO_LIGHT => Some((y.prim, y.t)),
                 _ => None,
             };
@@ -170,6 +179,8 @@ fn flat_emitter_hits_are_the_closest_hits_on_emitters() {
             };
             assert_eq!(got(&g, false), expected, "{ray:?}");
             assert_eq!(got(&g, true), expected, "{ray:?}");
+            let escapes = matches!(g.first_emitter(&ray, true), Along::Escapes);
+            assert_eq!(escapes, closest.is_none(), "{ray:?}");
             assert_eq!(got(&tree, false), expected, "{ray:?}");
             let on_light = g
                 .flat_emitters
@@ -178,10 +189,16 @@ fn flat_emitter_hits_are_the_closest_hits_on_emitters() {
             seen += expected.is_some() as u32;
             hidden += (on_light.is_some() && expected.is_none()) as u32;
             missed += on_light.is_none() as u32;
+            // Lights hidden by a rectangle (the shelf: these rays rise, so not the floor).
+            let by_rect = closest.is_some_and(|y| {
+                y.light == NO_LIGHT && matches!(g.prims[y.prim as usize].shape, Shape::Rectangle(_))
+            });
+            shelved += (on_light.is_some() && by_rect) as u32;
         }
         assert!(
-            seen > 2_000 && hidden > 200 && missed > 10_000,
-            "{seen} lights seen, {hidden} hidden, {missed} rays missing every light"
+            seen > 2_000 && hidden > 200 && missed > 10_000 && shelved > 50,
+            "{seen} lights seen, {hidden} hidden ({shelved} by the shelf), {missed} rays \
+             missing every light"
         );
     }
 }
