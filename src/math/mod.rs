@@ -5,6 +5,7 @@
 pub mod atan;
 pub mod elliptic;
 pub mod exp;
+pub mod f64x8;
 pub mod frame;
 pub mod spectrum;
 pub mod texture;
