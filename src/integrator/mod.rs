@@ -9,6 +9,7 @@ mod light;
 pub mod mis;
 pub mod probe;
 mod ris;
+mod shadow_rays;
 mod spatial;
 mod staged;
 
@@ -16,12 +17,12 @@ pub use crate::settings::{DEFAULT_RIS_CANDIDATES, MAX_RIS_CANDIDATES};
 
 pub use mis::{MisHeuristic, MisSettings, OptimalPixel, TechniqueMoments};
 pub use probe::{Probe, ProbeSample};
+pub use shadow_rays::ShadowRays;
 pub use spatial::{Reuse, SpatialReservoir, SpatialSurface};
 pub use staged::{Begun, Staged};
 
 use std::borrow::Cow;
 use std::cell::RefCell;
-use std::sync::atomic::{AtomicU64, Ordering};
 
 use glam::Vec3;
 
@@ -63,48 +64,6 @@ pub struct Estimator {
     /// every light is a delta light, and then BSDF-sampled rays, which can only score by
     /// reaching one, contribute exactly zero and are not traced.
     emitters_reachable: bool,
-}
-
-/// A count of shadow rays shared by the render's threads: one slot (its own cache line)
-/// per worker thread, so counting costs an uncontended add rather than a cache line
-/// bounced between threads on every shadow ray. Cloning copies the count.
-#[derive(Debug)]
-pub struct ShadowRays(Box<[Slot; SLOTS]>);
-
-/// Slots of [`ShadowRays`]; threads beyond share them round-robin.
-const SLOTS: usize = 64;
-
-/// One thread's count, alone on its cache line.
-#[derive(Debug, Default)]
-#[repr(align(128))]
-struct Slot(AtomicU64);
-
-impl Default for ShadowRays {
-    fn default() -> Self {
-        ShadowRays(Box::new(std::array::from_fn(|_| Slot::default())))
-    }
-}
-
-impl ShadowRays {
-    /// Counts one shadow ray.
-    #[inline]
-    fn add(&self) {
-        let i = rayon::current_thread_index().unwrap_or(0) % SLOTS;
-        self.0[i].0.fetch_add(1, Ordering::Relaxed);
-    }
-
-    /// The count so far.
-    pub fn get(&self) -> u64 {
-        self.0.iter().map(|s| s.0.load(Ordering::Relaxed)).sum()
-    }
-}
-
-impl Clone for ShadowRays {
-    fn clone(&self) -> Self {
-        let copy = ShadowRays::default();
-        copy.0[0].0.store(self.get(), Ordering::Relaxed);
-        copy
-    }
 }
 
 impl Estimator {
