@@ -57,6 +57,12 @@ XML = [
     ("radius-nan", scene(SPHERE.format('⟦<float name="radius" value="NaN"/>')), "not a finite number"),
     ("radius-inf", scene(SPHERE.format('⟦<float name="radius" value="inf"/>')), "not a finite number"),
     ("radius-huge", scene(SPHERE.format('⟦<float name="radius" value="1e38"/>')), "out of range"),
+    # Each number within range, the shape beyond it in world space (nested transforms multiply).
+    ("reach-sphere-scaled", scene(SPHERE.format('<float name="radius" value="1e9"/>⟦<transform name="to_world"><scale value="1e9"/><scale value="1e9"/></transform>')), "sphere reaches 1e27;beyond ±1e9"),
+    ("reach-sphere-centre", scene('⟦' + SPHERE.format('<point name="center" x="1e9" y="0" z="0"/><float name="radius" value="1e9"/>')), "sphere reaches 2e9;beyond ±1e9"),
+    ("reach-rectangle", scene('<shape type="rectangle">⟦<transform name="to_world"><scale value="1e9"/><translate x="1e9"/></transform></shape>'), "rectangle reaches 2e9;beyond ±1e9"),
+    ("reach-disk", scene('<shape type="disk">⟦<transform name="to_world"><scale value="1e6"/><scale value="1e6"/></transform></shape>'), "disk reaches 1e12;beyond ±1e9"),
+    ("reach-cube", scene('<shape type="cube">⟦<transform name="to_world"><translate z="1e9"/><scale value="1e9"/></transform></shape>'), "cube reaches;beyond ±1e9"),
     ("radius-word", scene(SPHERE.format('⟦<float name="radius" value="one"/>')), "not a finite number"),
     ("radius-two-numbers", scene(SPHERE.format('⟦<float name="radius" value="1,2"/>')), "not a finite number"),
     ("pixel-format-foo", with_sensor("", '⟦<string name="pixel_format" value="foo"/>'), 'unknown pixel_format "foo"'),

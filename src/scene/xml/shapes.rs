@@ -10,10 +10,11 @@ use super::build::Context;
 use super::props::Props;
 use super::tree::Element;
 use crate::geometry::Mesh;
+use crate::geometry::aabb::Aabb;
 use crate::geometry::shape::{Disk, Rectangle, Shape, Sphere};
 use crate::math::{Frame, Spectrum};
 use crate::scene::builder::Emission;
-use crate::scene::mesh_io;
+use crate::scene::mesh_io::{self, MAX_MAGNITUDE};
 
 /// Shape types this loader knows.
 const SHAPES: [&str; 7] = [
@@ -120,7 +121,9 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
                 },
                 ..Sphere::new(to_world.transform_point3(center), r)
             };
-            ctx.builder.shape(Shape::Sphere(sphere), material, emission);
+            let sphere = Shape::Sphere(sphere);
+            within_range(&p, "sphere", sphere.bounds())?;
+            ctx.builder.shape(sphere, material, emission);
         }
         "rectangle" => {
             let corner = |x: f32, y: f32| to_world.transform_point3(Vec3::new(x, y, 0.0));
@@ -132,8 +135,9 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
             let flipped = flip;
             match Rectangle::new(o, ea, eb) {
                 Some(r) => {
-                    let r = if flipped { r.flipped() } else { r };
-                    ctx.builder.shape(Shape::Rectangle(r), material, emission);
+                    let r = Shape::Rectangle(if flipped { r.flipped() } else { r });
+                    within_range(&p, "rectangle", r.bounds())?;
+                    ctx.builder.shape(r, material, emission);
                 }
                 // A sheared rectangle is a parallelogram: two triangles, wound so that
                 // their normal is n.
@@ -149,6 +153,7 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
                         indices: vec![[0, 1, 2], [0, 2, 3]],
                         ..Mesh::default()
                     };
+                    within_range(&p, "rectangle", mesh_bounds(&mesh))?;
                     ctx.builder.mesh(mesh, material, emission);
                 }
             }
@@ -172,10 +177,13 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
                 radius,
                 axes: [ex / radius, ey / radius],
             };
-            ctx.builder.shape(Shape::Disk(disk), material, emission);
+            let disk = Shape::Disk(disk);
+            within_range(&p, "disk", disk.bounds())?;
+            ctx.builder.shape(disk, material, emission);
         }
         "cube" => {
             let mesh = transform_mesh(cube(), to_world, flip);
+            within_range(&p, "cube", mesh_bounds(&mesh))?;
             ctx.builder.mesh(mesh, material, emission);
         }
         "obj" | "ply" | "serialized" => {
@@ -208,6 +216,7 @@ pub fn add_shape<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<(), XmlEr
                 }
             }
             let mesh = transform_mesh(mesh, to_world, flip);
+            within_range(&p, "mesh", mesh_bounds(&mesh))?;
             ctx.builder.mesh(mesh, material, emission);
         }
         other => {
@@ -241,6 +250,43 @@ fn area_emitter<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<Emission, 
     };
     ctx.finish(&p)?;
     Ok(emission)
+}
+
+/// Refuses a shape that reaches beyond ±[`MAX_MAGNITUDE`] in world space. The file's
+/// numbers are each within that range, but nested transforms multiply them, and beyond
+/// it the renderer's squared distances overflow f32: a sphere's intersection then gives
+/// NaN distances, which block every shadow ray. Located at `to_world` (at the shape when
+/// it has none).
+fn within_range(p: &Props, what: &str, bounds: Aabb) -> Result<(), XmlError> {
+    let reach = bounds.min.abs().max(bounds.max.abs());
+    // `is_finite` first: `max_element` skips NaN.
+    if reach.is_finite() && reach.max_element() <= MAX_MAGNITUDE {
+        return Ok(());
+    }
+    Err(p.error_at(
+        "to_world",
+        format!(
+            "the {what} reaches {:e} in world space, beyond ±{MAX_MAGNITUDE:e} (squared \
+             distances would overflow f32); scale the scene down",
+            reach.max_element()
+        ),
+    ))
+}
+
+/// The box around a mesh's vertices.
+fn mesh_bounds(mesh: &Mesh) -> Aabb {
+    let (min, max) = mesh
+        .positions
+        .iter()
+        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &q| {
+            (lo.min(q), hi.max(q))
+        });
+    // A NaN position shows as a NaN corner (`min` and `max` skip NaN).
+    let nan = mesh.positions.iter().any(|q| !q.is_finite());
+    Aabb {
+        min: if nan { Vec3::NAN } else { min },
+        max,
+    }
 }
 
 /// The scale s when `m` = s · rotation.
