@@ -153,22 +153,33 @@ mod tests {
     }
 
     /// Threads that come and go one after another reuse the ids the earlier ones gave
-    /// back (so they keep the unlocked add), and the count stays exact.
+    /// back (so they keep the unlocked add), and the count stays exact. Each thread is
+    /// joined itself: the scope's own join may return before the thread's local storage
+    /// (and its lease) is dropped.
     #[test]
     fn ids_are_given_back() {
         let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
         let rays = ShadowRays::default();
+        let mut shared = 0;
         for _ in 0..3 * SLOTS {
-            std::thread::scope(|s| {
+            let own = std::thread::scope(|s| {
                 s.spawn(|| {
                     rays.add();
                     rays.add();
-                });
+                    id()
+                })
+                .join()
+                .expect("no panic")
             });
+            shared += (own == SLOTS) as u32;
         }
         assert_eq!(rays.get(), 6 * SLOTS as u64);
-        // Other tests' threads may hold a few ids meanwhile, not all of them.
-        let id = std::thread::scope(|s| s.spawn(id).join().expect("no panic"));
-        assert!(id < SLOTS, "a new thread got the shared slot");
+        // Without ids given back, all but the first few of these threads would share the
+        // slot. Other tests' threads (the rayon pool's, the test harness's: about two per
+        // core) hold some ids meanwhile; on a machine of many cores they may hold most.
+        let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+        if cores < SLOTS / 8 {
+            assert_eq!(shared, 0, "{cores} cores");
+        }
     }
 }

@@ -58,11 +58,12 @@ XML = [
     ("radius-inf", scene(SPHERE.format('⟦<float name="radius" value="inf"/>')), "not a finite number"),
     ("radius-huge", scene(SPHERE.format('⟦<float name="radius" value="1e38"/>')), "out of range"),
     # Each number within range, the shape beyond it in world space (nested transforms multiply).
-    ("reach-sphere-scaled", scene(SPHERE.format('<float name="radius" value="1e9"/>⟦<transform name="to_world"><scale value="1e9"/><scale value="1e9"/></transform>')), "sphere reaches 1e27;beyond ±1e9"),
-    ("reach-sphere-centre", scene('⟦' + SPHERE.format('<point name="center" x="1e9" y="0" z="0"/><float name="radius" value="1e9"/>')), "sphere reaches 2e9;beyond ±1e9"),
-    ("reach-rectangle", scene('<shape type="rectangle">⟦<transform name="to_world"><scale value="1e9"/><translate x="1e9"/></transform></shape>'), "rectangle reaches 2e9;beyond ±1e9"),
-    ("reach-disk", scene('<shape type="disk">⟦<transform name="to_world"><scale value="1e6"/><scale value="1e6"/></transform></shape>'), "disk reaches 1e12;beyond ±1e9"),
-    ("reach-cube", scene('<shape type="cube">⟦<transform name="to_world"><translate z="1e9"/><scale value="1e9"/></transform></shape>'), "cube reaches;beyond ±1e9"),
+    ("reach-sphere-scaled", scene(SPHERE.format('<float name="radius" value="1e9"/>⟦<transform name="to_world"><scale value="1e9"/><scale value="1e9"/></transform>')), "sphere reaches 1e27;within ±1e9"),
+    ("reach-sphere-centre", scene('⟦' + SPHERE.format('<point name="center" x="1e9" y="0" z="0"/><float name="radius" value="1e9"/>')), "sphere reaches 2e9;within ±1e9"),
+    ("reach-rectangle", scene('<shape type="rectangle">⟦<transform name="to_world"><scale value="1e9"/><translate x="1e9"/></transform></shape>'), "rectangle reaches 2e9;within ±1e9"),
+    ("reach-disk", scene('<shape type="disk">⟦<transform name="to_world"><scale value="1e6"/><scale value="1e6"/></transform></shape>'), "disk reaches 1e12;within ±1e9"),
+    ("reach-cube-infinite", scene('<shape type="cube">⟦<transform name="to_world"><translate x="-1"/><scale x="1e9"/><scale x="1e9"/><scale x="1e9"/><scale x="1e9"/><scale x="200"/></transform></shape>'), "cube is not finite in world space;within ±1e9"),
+    ("reach-cube", scene('<shape type="cube">⟦<transform name="to_world"><translate z="1e9"/><scale value="1e9"/></transform></shape>'), "cube reaches;within ±1e9"),
     ("radius-word", scene(SPHERE.format('⟦<float name="radius" value="one"/>')), "not a finite number"),
     ("radius-two-numbers", scene(SPHERE.format('⟦<float name="radius" value="1,2"/>')), "not a finite number"),
     ("pixel-format-foo", with_sensor("", '⟦<string name="pixel_format" value="foo"/>'), 'unknown pixel_format "foo"'),
@@ -307,6 +308,7 @@ GEN_IMAGES = [
     ("huge.pfm", "out of range"),
     ("short.pfm", "shorter than its header"),
     ("zero-size.pfm", "out of range"),
+    ("zero-scale.pfm", "bad PFM scale"),
 ]
 
 OK = "$IN/../scenes/cbox_diffuse.xml"
@@ -379,6 +381,11 @@ HAND = [
     ("warp-unknown", "warp nope", 2, "-", 'unknown warp "nope"'),
     ("figure-unknown", "figure nope -o $OUT/fig", 2, "-", 'unknown figure "nope"'),
     ("subcommand-unknown", "paint", 2, "-", "unrecognized subcommand"),
+    ("render-ris-spatial-without-ris", f"render {OK} --ris-spatial 4 -o $OUT/o.png", 2, "--ris-spatial", "--light-select ris;--light-select bvh"),
+    ("render-ris-spatial-directional", f"render {OK} --light-select ris --ris-spatial 4 --estimator cosine -o $OUT/o.png", 2, "--ris-spatial", "--estimator cosine"),
+    ("render-ris-spatial-too-many", f"render {OK} --light-select ris --ris-spatial 33 -o $OUT/o.png", 2, "--ris-spatial", "0..=32"),
+    ("render-ris-radius-zero", f"render {OK} --light-select ris --ris-spatial 2 --ris-radius 0 -o $OUT/o.png", 2, "--ris-radius", "1..=256"),
+    ("probe-ris-spatial", f"probe {OK} --pixel 10,10 --light-select ris --ris-spatial 2 -o $OUT/p", 2, "--ris-spatial", "probe without it"),
 ]
 
 

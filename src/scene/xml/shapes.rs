@@ -252,41 +252,47 @@ fn area_emitter<'a>(ctx: &mut Context<'a>, el: &'a Element) -> Result<Emission, 
     Ok(emission)
 }
 
-/// Refuses a shape that reaches beyond ±[`MAX_MAGNITUDE`] in world space. The file's
-/// numbers are each within that range, but nested transforms multiply them, and beyond
-/// it the renderer's squared distances overflow f32: a sphere's intersection then gives
-/// NaN distances, which block every shadow ray. Located at `to_world` (at the shape when
-/// it has none).
+/// Refuses a shape that is not finite or reaches beyond ±[`MAX_MAGNITUDE`] in world
+/// space: the range lightlab accepts for a file's numbers, which nested transforms
+/// multiply. Products of larger coordinates can overflow f32 (a sphere's intersection
+/// then gives NaN distances, which block every ray). Located at `to_world` (at the shape
+/// when it has none).
 fn within_range(p: &Props, what: &str, bounds: Aabb) -> Result<(), XmlError> {
-    let reach = bounds.min.abs().max(bounds.max.abs());
-    // `is_finite` first: `max_element` skips NaN.
-    if reach.is_finite() && reach.max_element() <= MAX_MAGNITUDE {
+    let finite = bounds.min.is_finite() && bounds.max.is_finite();
+    let reach = bounds.min.abs().max(bounds.max.abs()).max_element();
+    if finite && reach <= MAX_MAGNITUDE {
         return Ok(());
     }
+    let extent = if finite {
+        format!("reaches {reach:e}")
+    } else {
+        "is not finite".to_string()
+    };
     Err(p.error_at(
         "to_world",
         format!(
-            "the {what} reaches {:e} in world space, beyond ±{MAX_MAGNITUDE:e} (squared \
-             distances would overflow f32); scale the scene down",
-            reach.max_element()
+            "the {what} {extent} in world space; lightlab accepts coordinates within \
+             ±{MAX_MAGNITUDE:e} (products of larger ones can overflow f32): scale the scene \
+             down"
         ),
     ))
 }
 
-/// The box around a mesh's vertices.
+/// The box around a mesh's vertices; NaN where a vertex is not finite.
 fn mesh_bounds(mesh: &Mesh) -> Aabb {
+    if !mesh.positions.iter().all(|q| q.is_finite()) {
+        return Aabb {
+            min: Vec3::NAN,
+            max: Vec3::NAN,
+        };
+    }
     let (min, max) = mesh
         .positions
         .iter()
         .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &q| {
             (lo.min(q), hi.max(q))
         });
-    // A NaN position shows as a NaN corner (`min` and `max` skip NaN).
-    let nan = mesh.positions.iter().any(|q| !q.is_finite());
-    Aabb {
-        min: if nan { Vec3::NAN } else { min },
-        max,
-    }
+    Aabb { min, max }
 }
 
 /// The scale s when `m` = s · rotation.
