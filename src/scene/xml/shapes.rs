@@ -278,21 +278,17 @@ fn within_range(p: &Props, what: &str, bounds: Aabb) -> Result<(), XmlError> {
     ))
 }
 
-/// The box around a mesh's vertices; NaN where a vertex is not finite.
+/// The box around a mesh's vertices; NaN where a vertex is not finite (the box's own
+/// fold would pass over a NaN).
 fn mesh_bounds(mesh: &Mesh) -> Aabb {
-    if !mesh.positions.iter().all(|q| q.is_finite()) {
-        return Aabb {
+    if mesh.positions.iter().all(|q| q.is_finite()) {
+        Aabb::from_points(&mesh.positions)
+    } else {
+        Aabb {
             min: Vec3::NAN,
             max: Vec3::NAN,
-        };
+        }
     }
-    let (min, max) = mesh
-        .positions
-        .iter()
-        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &q| {
-            (lo.min(q), hi.max(q))
-        });
-    Aabb { min, max }
 }
 
 /// The scale s when `m` = s · rotation.
