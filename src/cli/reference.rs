@@ -123,7 +123,8 @@ pub fn run(args: &ReferenceArgs) -> Result<(), CliError> {
     if out.stopped {
         metadata.push(("lightlab.partial".into(), partial.clone()));
     }
-    write_film_with_metadata(&out.film, &args.output, 0.0, &metadata).map_err(CliError::failure)?;
+    pool.install(|| write_film_with_metadata(&out.film, &args.output, 0.0, &metadata))
+        .map_err(CliError::failure)?;
     eprintln!(
         "{}: {} spp in {} passes, {:.2} s; relative error {:.2e} (image mean), {:.2e} (90% of pixels){} -> {}",
         scene.name,

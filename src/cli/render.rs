@@ -165,7 +165,8 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
     if out.stopped {
         metadata.push(("lightlab.partial".to_string(), partial.clone()));
     }
-    write_film_with_metadata(&out.film, &args.output, args.exposure, &metadata)
+    // On the render's pool: the EXR writer compresses its blocks in parallel.
+    pool.install(|| write_film_with_metadata(&out.film, &args.output, args.exposure, &metadata))
         .map_err(CliError::failure)?;
     let samples = out.spp as f64 * (camera.width * camera.height) as f64;
     eprintln!(

@@ -1,78 +1,13 @@
-//! OpenEXR: float RGB, the variance of each pixel's mean (`variance.R/G/B`), `spp` and
-//! text metadata in the header; reading checks the declared sizes against the file first.
+//! Reading OpenEXR (with the `exr` crate): float RGB, the variance of each pixel's mean
+//! (`variance.R/G/B`) where present, `spp` and text metadata in the header; the declared
+//! sizes are checked against the file first. Writing is `exr_write.rs`.
 
-use exr::prelude::Layer;
-use exr::prelude::{
-    AnyChannel, AnyChannels, AttributeValue, Encoding, FlatSamples, Image, LayerAttributes,
-    ReadChannels, ReadLayers, SmallVec, Text, WritableImage, read,
-};
+use exr::prelude::{AttributeValue, ReadChannels, ReadLayers, Text, read};
 use std::path::Path;
 
-use super::{ImageError, LoadedImage, image_error, write_atomically};
-use crate::image::film::{Film, PixelStats};
+use super::{ImageError, LoadedImage, image_error};
 use crate::image::limits::check_exr;
 use crate::math::Spectrum;
-
-/// Images of at most this many pixels (64 × 64) are compressed on the calling thread.
-const SERIAL_PIXELS: usize = 64 * 64;
-
-pub(super) fn write_exr(
-    film: &Film,
-    path: &Path,
-    metadata: &[(String, String)],
-) -> Result<(), ImageError> {
-    let size = (film.width as usize, film.height as usize);
-    let channel = |name: &str, f: &dyn Fn(&PixelStats) -> f32| {
-        AnyChannel::new(name, FlatSamples::F32(film.pixels.iter().map(f).collect()))
-    };
-    let channels = vec![
-        channel("R", &|p| p.mean.x),
-        channel("G", &|p| p.mean.y),
-        channel("B", &|p| p.mean.z),
-        channel("variance.R", &|p| p.variance_of_mean().x),
-        channel("variance.G", &|p| p.variance_of_mean().y),
-        channel("variance.B", &|p| p.variance_of_mean().z),
-    ];
-    let mut attributes = LayerAttributes::named("");
-    attributes.software_name = Some(Text::from("lightlab"));
-    let spp = film.pixels.iter().map(|p| p.count).min().unwrap_or(0);
-    attributes
-        .other
-        .insert(Text::from("spp"), AttributeValue::I32(spp as i32));
-    for (name, value) in metadata {
-        if name == "spp" || name.is_empty() {
-            return Err(image_error(
-                path,
-                format!("bad EXR attribute name \"{name}\""),
-            ));
-        }
-        attributes.other.insert(
-            Text::from(name.as_str()),
-            AttributeValue::Text(Text::from(value.as_str())),
-        );
-    }
-    let layer = Layer::new(
-        size,
-        attributes,
-        Encoding::SMALL_LOSSLESS,
-        AnyChannels::sort(SmallVec::from_vec(channels)),
-    );
-    let image = Image::from_layer(layer);
-    // The exr crate compresses blocks (16 rows under ZIP16) on a thread pool that it
-    // builds for each write. On a small image the pool costs more than it saves
-    // (`render --spp 1` at 64 × 64: 3.7 ms with the pool, 3.4 ms without; at 128 × 128
-    // 5.8 and 6.3 ms, at 1920² 480 and 630 ms).
-    let serial = film.width as usize * film.height as usize <= SERIAL_PIXELS;
-    write_atomically(path, |tmp| {
-        let writer = image.write();
-        let writer = if serial {
-            writer.non_parallel()
-        } else {
-            writer
-        };
-        writer.to_file(tmp).map_err(|e| e.to_string())
-    })
-}
 
 pub(super) fn read_exr(path: &Path) -> Result<LoadedImage, ImageError> {
     check_exr(path).map_err(|e| image_error(path, e))?;
@@ -130,7 +65,7 @@ pub(super) fn read_exr(path: &Path) -> Result<LoadedImage, ImageError> {
         .iter()
         .flat_map(|m| m.iter())
         .filter_map(|(k, v)| match v {
-            AttributeValue::Text(t) => Some((k.to_string(), t.to_string())),
+            AttributeValue::Text(t) => Some((text(k), text(t))),
             _ => None,
         })
         .collect();
@@ -143,4 +78,14 @@ pub(super) fn read_exr(path: &Path) -> Result<LoadedImage, ImageError> {
         spp,
         metadata,
     })
+}
+
+/// A header text as a string: UTF-8 (as lightlab writes it, and OpenEXR by convention)
+/// where its bytes are, else one character per byte (Latin-1, as the `exr` crate wrote
+/// it before).
+fn text(t: &Text) -> String {
+    match std::str::from_utf8(t.bytes()) {
+        Ok(s) => s.to_owned(),
+        Err(_) => t.to_string(),
+    }
 }

@@ -1,17 +1,20 @@
 //! Image files. Output goes to a temporary file in the same folder and is renamed into
 //! place, so a file is written whole or not at all (`output.rs`).
 //!
-//! One file per format: `exr` (float RGB, the variance of each pixel's mean as channels
-//! `variance.R/G/B`, the samples per pixel as the header attribute `spp`, text metadata),
+//! One file per format: `exr` and `exr_write` (float RGB, the variance of each pixel's mean
+//! as channels `variance.R/G/B`, the samples per pixel as the header attribute `spp`, text
+//! metadata; read with the `exr` crate, written by lightlab in parallel blocks),
 //! `png` (sRGB 8-bit, with the sRGB transfer functions), `hdr` (Radiance RGBE, read only)
 //! and `pfm`. This file holds the shared types and the dispatch by extension.
 
 mod exr;
+mod exr_write;
 mod hdr;
 mod pfm;
 mod png;
 
-use exr::{read_exr, write_exr};
+use exr::read_exr;
+use exr_write::write_exr;
 use hdr::read_hdr;
 use pfm::read_pfm;
 pub use pfm::{pfm_bytes, write_pfm};
