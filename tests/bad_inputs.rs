@@ -145,6 +145,11 @@ fn generate(dir: &Path, scenes: &Path) {
         ("truncated.serialized", original[..24].to_vec()),
         ("huge-binary.ply", binary_ply(4_000_000_000)),
         ("truncated-binary.ply", binary_ply(3)),
+        // A scene whose path is beyond Latin-1: its EXR header holds the path.
+        (
+            "日本.xml",
+            std::fs::read(scenes.join("cbox_diffuse.xml")).expect("read"),
+        ),
     ];
     for (name, bytes) in files {
         std::fs::write(dir.join(name), bytes).expect("write");

@@ -318,6 +318,7 @@ HAND = [
     ("diff-false-color-pfm", "diff $GEN/ok4.exr $GEN/ok4.exr --false-color $OUT/o.pfm", 2, "--false-color", "PNG"),
     ("diff-false-color-bare", "diff $GEN/ok4.exr $GEN/ok4.exr --false-color $OUT/o", 2, "--false-color", "PNG"),
     ("diff-zero-reference", "diff $GEN/ok4.exr $GEN/zero4.exr", 0, "-", "relative-bias: undefined"),
+    ("render-utf8-path", "render $GEN/日本.xml --spp 1 -o $OUT/u.exr", 0, "-", "日本.xml;u.exr"),
     ("diff-size-mismatch", "diff $GEN/ok4.exr $GEN/ok8.exr", 2, "-", "is 4x4 but;is 8x8"),
     ("diff-missing", "diff $GEN/nothing.exr $GEN/ok4.exr", 2, "-", "nothing.exr"),
     ("diff-bmp", "diff $IN/img/a.bmp $GEN/ok4.exr", 2, "-", "unknown image format"),
