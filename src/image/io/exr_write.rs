@@ -96,6 +96,13 @@ pub(super) fn write_exr(
 
 /// Magic number, version field and header attributes, up to the header's closing zero.
 fn header(film: &Film, metadata: &[(String, String)]) -> Result<Vec<u8>, String> {
+    // Sizes and rows are i32 in the file: a block (16 rows of six floats) and the last
+    // row must fit in one.
+    let (w, h) = (film.width, film.height);
+    let block_bytes = w as u64 * (4 * CHANNELS.len() * ROWS) as u64;
+    if w == 0 || h == 0 || block_bytes > i32::MAX as u64 || h > i32::MAX as u32 {
+        return Err(format!("cannot write a {w}x{h} EXR image"));
+    }
     for (name, _) in metadata {
         if name.is_empty() || name.contains('\0') || RESERVED.contains(&name.as_str()) {
             return Err(format!("bad EXR attribute name \"{name}\""));

@@ -165,4 +165,14 @@ fn names_a_text_attribute_may_not_take_are_errors() {
         assert!(err.message.contains("attribute name"), "{name:?}: {err}");
     }
     assert!(!path.exists(), "no file is written for a refused header");
+    for (w, h) in [(0, 2), (2, 0), (u32::MAX / 64, 1)] {
+        let film = Film {
+            width: w,
+            height: h,
+            pixels: Vec::new(),
+        };
+        let err = write_exr(&film, &path, &[]).unwrap_err();
+        assert!(err.message.contains("cannot write a"), "{w}x{h}: {err}");
+    }
+    assert!(!path.exists());
 }
