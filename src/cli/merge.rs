@@ -35,7 +35,7 @@ pub fn run(args: &MergeArgs) -> Result<(), CliError> {
     let mut metadata = merged.metadata;
     metadata.push(("lightlab.merged_from".to_string(), parts.join(" ")));
     write_film_with_metadata(&film, &args.output, 0.0, &metadata).map_err(CliError::failure)?;
-    let spp = film.pixels.iter().map(|p| p.count).min().unwrap_or(0);
+    let spp = film.spp();
     eprintln!(
         "merged {} parts: {spp} spp -> {}",
         args.parts.len(),

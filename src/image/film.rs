@@ -129,6 +129,11 @@ impl Film {
         &self.pixels[(y * self.width + x) as usize]
     }
 
+    /// The fewest samples any pixel holds (0 for an empty film): the image's spp.
+    pub fn spp(&self) -> u32 {
+        self.pixels.iter().map(|p| p.count).min().unwrap_or(0)
+    }
+
     /// The means as an RGB image.
     pub fn means(&self) -> Vec<Spectrum> {
         self.pixels.iter().map(|p| p.mean).collect()

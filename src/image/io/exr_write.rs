@@ -6,9 +6,9 @@
 //!
 //! The blocks are compressed in parallel on the calling rayon pool, with deflate at level
 //! 1 (a greedy match search) rather than the level 4 of OpenEXR's library and of the
-//! `exr` crate, which wrote lightlab's files before: on a 1920×1080 render the writer
-//! took 0.40 s of one core for the blocks at level 4 and 0.15 s at level 1, for a file
-//! 4 % larger (float mantissas hardly compress either way; BENCHMARKS.md, session 35).
+//! `exr` crate, which wrote lightlab's files before: on a 1920×1080 render at 16 spp the
+//! blocks took 0.75 s of one core at level 4 and 0.16 s at level 1, for a file 4 % larger
+//! (float mantissas hardly compress either way; BENCHMARKS.md, session 35).
 //! Text is written as UTF-8 bytes, which OpenEXR's strings are by convention.
 
 use rayon::prelude::*;
@@ -21,18 +21,23 @@ use crate::image::film::{Film, PixelStats};
 /// Rows per block under ZIP compression (fixed by the format).
 const ROWS: usize = 16;
 
-/// A channel: its name, its `pLinear` flag and its value in a pixel.
-type Channel = (&'static str, u8, fn(&PixelStats) -> f32);
-
-/// The channels in the order the file lists them (sorted by name, as OpenEXR requires).
-const CHANNELS: [Channel; 6] = [
-    ("B", 0, |p| p.mean.z),
-    ("G", 0, |p| p.mean.y),
-    ("R", 0, |p| p.mean.x),
-    ("variance.B", 1, |p| p.variance_of_mean().z),
-    ("variance.G", 1, |p| p.variance_of_mean().y),
-    ("variance.R", 1, |p| p.variance_of_mean().x),
+/// The channels in the order the file lists them (sorted by name, as OpenEXR requires),
+/// with their `pLinear` flag: set for the variances, which are not perceptual values (it
+/// matters only to lossy codecs; the `exr` crate set it the same way).
+const CHANNELS: [(&str, u8); 6] = [
+    ("B", 0),
+    ("G", 0),
+    ("R", 0),
+    ("variance.B", 1),
+    ("variance.G", 1),
+    ("variance.R", 1),
 ];
+
+/// A pixel's values in the order of [`CHANNELS`].
+fn values(p: &PixelStats) -> [f32; 6] {
+    let v = p.variance_of_mean();
+    [p.mean.z, p.mean.y, p.mean.x, v.z, v.y, v.x]
+}
 
 /// Header attributes that lightlab writes itself, or that readers interpret: a text
 /// attribute may not take their names.
@@ -103,7 +108,11 @@ fn header(film: &Film, metadata: &[(String, String)]) -> Result<Vec<u8>, String>
     if w == 0 || h == 0 || block_bytes > i32::MAX as u64 || h > i32::MAX as u32 {
         return Err(format!("cannot write a {w}x{h} EXR image"));
     }
-    for (name, _) in metadata {
+    if film.pixels.len() as u64 != w as u64 * h as u64 {
+        let n = film.pixels.len();
+        return Err(format!("cannot write a {w}x{h} EXR image from {n} pixels"));
+    }
+    for (name, value) in metadata {
         if name.is_empty() || name.contains('\0') || RESERVED.contains(&name.as_str()) {
             return Err(format!("bad EXR attribute name \"{name}\""));
         }
@@ -111,6 +120,9 @@ fn header(film: &Film, metadata: &[(String, String)]) -> Result<Vec<u8>, String>
             return Err(format!(
                 "EXR attribute name longer than {MAX_NAME} bytes: \"{name}\""
             ));
+        }
+        if i32::try_from(value.len()).is_err() {
+            return Err(format!("EXR attribute \"{name}\" is too long to store"));
         }
     }
     // Version 2, single-part scanline; bit 10 where a name is longer than 31 bytes.
@@ -120,7 +132,7 @@ fn header(film: &Film, metadata: &[(String, String)]) -> Result<Vec<u8>, String>
     h.extend_from_slice(&20000630u32.to_le_bytes());
     h.extend_from_slice(&version.to_le_bytes());
     let mut channels = Vec::new();
-    for (name, linear, _) in CHANNELS {
+    for (name, linear) in CHANNELS {
         channels.extend_from_slice(name.as_bytes());
         channels.push(0);
         channels.extend_from_slice(&2i32.to_le_bytes()); // FLOAT
@@ -140,8 +152,7 @@ fn header(film: &Film, metadata: &[(String, String)]) -> Result<Vec<u8>, String>
     attribute(&mut h, "screenWindowCenter", "v2f", &[0; 8]);
     attribute(&mut h, "screenWindowWidth", "float", &1f32.to_le_bytes());
     attribute(&mut h, "software", "string", b"lightlab");
-    let spp = film.pixels.iter().map(|p| p.count).min().unwrap_or(0);
-    let spp = i32::try_from(spp).unwrap_or(i32::MAX);
+    let spp = i32::try_from(film.spp()).unwrap_or(i32::MAX);
     attribute(&mut h, "spp", "int", &spp.to_le_bytes());
     for (name, value) in metadata {
         attribute(&mut h, name, "string", value.as_bytes());
@@ -164,11 +175,17 @@ fn attribute(h: &mut Vec<u8>, name: &str, kind: &str, value: &[u8]) {
 /// `width` pixels starting at row `y`), each row every channel in turn, ZIP-compressed,
 /// or as they are where compression would not make them smaller (the format's rule).
 fn chunk(pixels: &[PixelStats], width: usize, y: usize) -> std::io::Result<Vec<u8>> {
-    let mut raw = Vec::with_capacity(pixels.len() * 4 * CHANNELS.len());
-    for row in pixels.chunks_exact(width) {
-        for (_, _, value) in CHANNELS {
-            for p in row {
-                raw.extend_from_slice(&value(p).to_le_bytes());
+    // Each row holds its channels one after the other: pixel i's channel c at c·width + i.
+    let row_bytes = width * 4 * CHANNELS.len();
+    let mut raw = vec![0u8; pixels.len() * 4 * CHANNELS.len()];
+    for (row, bytes) in pixels
+        .chunks_exact(width)
+        .zip(raw.chunks_exact_mut(row_bytes))
+    {
+        for (i, p) in row.iter().enumerate() {
+            for (c, v) in values(p).into_iter().enumerate() {
+                let at = 4 * (c * width + i);
+                bytes[at..at + 4].copy_from_slice(&v.to_le_bytes());
             }
         }
     }
@@ -185,9 +202,10 @@ fn chunk(pixels: &[PixelStats], width: usize, y: usize) -> std::io::Result<Vec<u
     Ok(out)
 }
 
-/// OpenEXR's ZIP coding of a block's bytes: the bytes at even positions, then those at
-/// odd positions (so the high bytes of floats sit together), each stored as its
-/// difference from the one before plus 128, then zlib (RFC 1950) at level 1.
+/// OpenEXR's ZIP coding of a block's bytes (OpenEXR's `ImfZip.cpp`): the bytes at even
+/// positions, then those at odd positions (so the high bytes of floats sit together),
+/// each stored as its difference from the one before plus 128, then zlib (RFC 1950) at
+/// level 1.
 fn zip(raw: &[u8]) -> std::io::Result<Vec<u8>> {
     let half = raw.len().div_ceil(2);
     let mut split = vec![0u8; raw.len()];

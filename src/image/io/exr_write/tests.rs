@@ -5,16 +5,17 @@
 use super::*;
 use crate::image::io::read_image;
 use crate::math::Spectrum;
+use crate::sampling::rng::Rng32;
 use exr::prelude::{AttributeValue, Compression, LineOrder, Text, read_all_flat_layers_from_file};
 
 /// A film of `width`×`height` whose pixels hold `count` samples each, multiples of 1/16
-/// in [0, 1) drawn by a small xorshift from `seed` (so that its blocks compress).
+/// in [0, 1) drawn from the stream `seed` (so that its blocks compress).
 fn film(width: u32, height: u32, count: u32, seed: u64) -> Film {
-    let mut next = xorshift(seed);
+    let mut rng = Rng32::new(seed);
     let mut film = Film::new(width, height);
     for p in film.pixels.iter_mut() {
         for _ in 0..count {
-            let mut value = || (next() >> 60) as f32 / 16.0;
+            let mut value = || (rng.next_u32() >> 28) as f32 / 16.0;
             p.add(Spectrum::new(value(), value(), value()));
         }
     }
@@ -24,25 +25,15 @@ fn film(width: u32, height: u32, count: u32, seed: u64) -> Film {
 /// A film whose means and squared deviations have random bits (signs and exponents too,
 /// finite), which no compression can shorten.
 fn wild_film(width: u32, height: u32, seed: u64) -> Film {
-    let mut next = xorshift(seed);
+    let mut rng = Rng32::new(seed);
     let mut film = Film::new(width, height);
     for p in film.pixels.iter_mut() {
-        let mut value = || f32::from_bits(next() as u32 & 0xbf7f_ffff);
+        let mut value = || f32::from_bits(rng.next_u32() & 0xbf7f_ffff);
         p.mean = Spectrum::new(value(), value(), value());
         p.m2 = Spectrum::new(value(), value(), value()).abs();
         (p.count, p.weight, p.weight2) = (2, 2.0, 2.0);
     }
     film
-}
-
-fn xorshift(seed: u64) -> impl FnMut() -> u64 {
-    let mut state = seed | 1;
-    move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        state
-    }
 }
 
 fn temp(name: &str) -> std::path::PathBuf {
@@ -71,11 +62,34 @@ fn read_channels(path: &Path) -> Vec<Vec<u32>> {
         .collect()
 }
 
+/// Each channel's bits as the film holds them, found by the channel's name (apart from
+/// the writer's own [`values`]).
 fn expected_channels(film: &Film) -> Vec<Vec<u32>> {
+    let value = |name: &str, p: &PixelStats| {
+        let (s, axis) = match name.strip_prefix("variance.") {
+            Some(axis) => (p.variance_of_mean(), axis),
+            None => (p.mean, name),
+        };
+        match axis {
+            "R" => s.x,
+            "G" => s.y,
+            _ => s.z,
+        }
+    };
     CHANNELS
         .iter()
-        .map(|(_, _, value)| film.pixels.iter().map(|p| value(p).to_bits()).collect())
+        .map(|(name, _)| {
+            film.pixels
+                .iter()
+                .map(|p| value(name, p).to_bits())
+                .collect()
+        })
         .collect()
+}
+
+/// The data size a chunk declares (after its row, before its data).
+fn stored_size(chunk: &[u8]) -> usize {
+    i32::from_le_bytes(chunk[4..8].try_into().unwrap()) as usize
 }
 
 #[test]
@@ -84,8 +98,7 @@ fn every_channel_reads_back_bit_for_bit_over_many_blocks() {
     let film = film(37, 53, 3, 7);
     for y in (0..53).step_by(ROWS) {
         let rows = &film.pixels[y * 37..(y + ROWS).min(53) * 37];
-        let stored = chunk(rows, 37, y).unwrap();
-        let size = i32::from_le_bytes(stored[4..8].try_into().unwrap()) as usize;
+        let size = stored_size(&chunk(rows, 37, y).unwrap());
         assert!(
             size < rows.len() * 4 * CHANNELS.len(),
             "block {y} is compressed"
@@ -116,18 +129,14 @@ fn every_channel_reads_back_bit_for_bit_over_many_blocks() {
 fn blocks_that_do_not_compress_are_stored_as_they_are() {
     let film = wild_film(16, 20, 99);
     let rows = &film.pixels[..16 * 16];
-    let stored = chunk(rows, 16, 0).unwrap();
-    let size = i32::from_le_bytes(stored[4..8].try_into().unwrap());
     assert_eq!(
-        size as usize,
+        stored_size(&chunk(rows, 16, 0).unwrap()),
         16 * 16 * 4 * CHANNELS.len(),
         "random bits stay raw"
     );
     let smooth = self::film(16, 16, 1, 5);
-    let zipped = chunk(&smooth.pixels, 16, 0).unwrap();
-    let size = i32::from_le_bytes(zipped[4..8].try_into().unwrap());
     assert!(
-        (size as usize) < 16 * 16 * 4 * CHANNELS.len(),
+        stored_size(&chunk(&smooth.pixels, 16, 0).unwrap()) < 16 * 16 * 4 * CHANNELS.len(),
         "smooth values compress"
     );
     let path = temp("raw.exr");
@@ -165,7 +174,7 @@ fn names_a_text_attribute_may_not_take_are_errors() {
         assert!(err.message.contains("attribute name"), "{name:?}: {err}");
     }
     assert!(!path.exists(), "no file is written for a refused header");
-    for (w, h) in [(0, 2), (2, 0), (u32::MAX / 64, 1)] {
+    for (w, h) in [(0, 2), (2, 0), (u32::MAX / 64, 1), (3, 3)] {
         let film = Film {
             width: w,
             height: h,
