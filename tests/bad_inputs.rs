@@ -1,8 +1,9 @@
 //! Hostile inputs through the built binary: every row of `tests/bad_inputs/cases.tsv`
 //! (written by `make_cases.py`, plus the fuzzer's findings) runs `lightlab` and checks
 //! its exit code, the place its error names (file:line:col or a flag), the words of the
-//! message, and that it neither panics, hangs nor leaves an output file behind. Large and
-//! binary inputs are generated here into `$GEN`.
+//! message, and that it neither panics, hangs nor leaves an output file behind; the
+//! images of a case that succeeds must read back whole and finite. Large and binary
+//! inputs are generated here into `$GEN`.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -12,7 +13,7 @@ use std::time::{Duration, Instant};
 use flate2::Compression;
 use flate2::write::ZlibEncoder;
 use lightlab::image::Film;
-use lightlab::image::io::{write_film, write_film_with_metadata};
+use lightlab::image::io::{read_image, write_film, write_film_with_metadata};
 use lightlab::math::Spectrum;
 
 /// Longest a case may run.
@@ -236,10 +237,37 @@ fn check(case: &Case, out: &Path) -> Option<String> {
     if case.code != 0 && !left.is_empty() {
         wrong.push(format!("left {:?}", left[0].file_name()));
     }
+    if case.code == 0 {
+        wrong.extend(left.iter().filter_map(|f| unreadable(case, &f.path())));
+    }
     for f in left {
         let _ = std::fs::remove_file(f.path());
     }
     (!wrong.is_empty()).then(|| format!("{}: {}\n{text}", case.name, wrong.join(", ")))
+}
+
+/// What is wrong with an image a successful run wrote, if anything: it must read back
+/// whole with every pixel finite, and an EXR of `render` must name the scene as it was
+/// given (`lightlab.scene`, a path beyond Latin-1 included).
+fn unreadable(case: &Case, path: &Path) -> Option<String> {
+    let name = path.file_name()?.to_string_lossy().into_owned();
+    let image = match read_image(path) {
+        Ok(image) => image,
+        Err(e) => return Some(format!("wrote {name}, which does not read back: {e}")),
+    };
+    let pixels = image.width as usize * image.height as usize;
+    if image.rgb.len() != pixels || image.rgb.iter().any(|c| !c.is_finite()) {
+        return Some(format!("wrote {name} with missing or non-finite pixels"));
+    }
+    let exr = path.extension().is_some_and(|e| e == "exr");
+    if exr && case.args.first().is_some_and(|a| a == "render") {
+        let scene = case.args.get(1)?;
+        let named = |(k, v): &(String, String)| k == "lightlab.scene" && v == scene;
+        if !image.metadata.iter().any(named) {
+            return Some(format!("{name} does not name its scene {scene}"));
+        }
+    }
+    None
 }
 
 #[test]

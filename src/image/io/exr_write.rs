@@ -39,25 +39,13 @@ fn values(p: &PixelStats) -> [f32; 6] {
     [p.mean.z, p.mean.y, p.mean.x, v.z, v.y, v.x]
 }
 
-/// Header attributes that lightlab writes itself, or that readers interpret: a text
-/// attribute may not take their names.
-const RESERVED: [&str; 15] = [
-    "channels",
-    "compression",
-    "dataWindow",
-    "displayWindow",
-    "lineOrder",
-    "pixelAspectRatio",
-    "screenWindowCenter",
-    "screenWindowWidth",
-    "software",
-    "spp",
-    "tiles",
-    "type",
-    "name",
-    "version",
-    "chunkCount",
-];
+/// Whether a text attribute may not take `name`: one that lightlab writes itself
+/// (`spp`), or one of OpenEXR's standard attributes (the `exr` crate's list), which
+/// readers interpret rather than hand over as text: a text `owner` or `comments` would
+/// come back as a typed field, a `chunkCount` or `type` would change how the file reads.
+fn reserved(name: &str) -> bool {
+    name == "spp" || exr::meta::header::standard_names::ALL.contains(&name.as_bytes())
+}
 
 /// Longest attribute name OpenEXR reads (with the long-names flag; 31 without).
 const MAX_NAME: usize = 255;
@@ -113,7 +101,7 @@ fn header(film: &Film, metadata: &[(String, String)]) -> Result<Vec<u8>, String>
         return Err(format!("cannot write a {w}x{h} EXR image from {n} pixels"));
     }
     for (name, value) in metadata {
-        if name.is_empty() || name.contains('\0') || RESERVED.contains(&name.as_str()) {
+        if name.is_empty() || name.contains('\0') || reserved(name) {
             return Err(format!("bad EXR attribute name \"{name}\""));
         }
         if name.len() > MAX_NAME {
