@@ -98,8 +98,9 @@ impl Estimator {
     /// The last stage, for the same `ray` and `hit` as [`Estimator::begin`], given the
     /// sample `ls` of `staged`'s light at its shading point (`scene.lights[i].sample(
     /// staged.at(), staged.u_point(), self.lights)`, or `None` without a light), drawing
-    /// on from `src` where [`Estimator::begin`] left it.
-    #[inline]
+    /// on from `src` where [`Estimator::begin`] left it. Always inlined (called, it
+    /// returned the estimate through memory).
+    #[inline(always)]
     pub fn finish(
         &self,
         scene: &Scene,

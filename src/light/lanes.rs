@@ -65,6 +65,23 @@ impl LightLanes {
         jobs: &[LaneJob; LANES],
         used: usize,
     ) -> [Option<LightSample>; LANES] {
+        let mut out = [None; LANES];
+        self.sample_each(lights, strategy, jobs, used, |l, ls| out[l] = ls);
+        out
+    }
+
+    /// [`LightLanes::sample`], handing job `l`'s sample to `put(l, sample)` for each of
+    /// the first `used` jobs, so that the caller stores it where it is wanted (returned
+    /// as an array, each 60-byte sample was copied twice more on its way).
+    #[inline(always)]
+    pub fn sample_each(
+        &self,
+        lights: &[Light],
+        strategy: LightStrategy,
+        jobs: &[LaneJob; LANES],
+        used: usize,
+        mut put: impl FnMut(usize, Option<LightSample>),
+    ) {
         let rectangle = |i: usize| match &lights[i] {
             Light::Area(a) => match &a.shape {
                 Shape::Rectangle(r) => (a, r),
@@ -82,11 +99,7 @@ impl LightLanes {
             }
         });
         let drawn = sample_lanes(&lane);
-        std::array::from_fn(|l| {
-            if l >= used {
-                return None;
-            }
-            let (i, at, u) = jobs[l];
+        for (l, &(i, at, u)) in jobs.iter().enumerate().take(used) {
             let (light, r) = rectangle(i);
             match drawn[l] {
                 // As rectangle::sample's fast path, then AreaLight::sample_with.
@@ -97,15 +110,18 @@ impl LightLanes {
                         ny: r.normal,
                         pdf,
                     };
-                    light_sample(at, point, strategy.horizon_rejection, |ny, w| {
-                        light.emitted(y, ny, w)
-                    })
+                    put(
+                        l,
+                        light_sample(at, point, strategy.horizon_rejection, |ny, w| {
+                            light.emitted(y, ny, w)
+                        }),
+                    );
                 }
                 // The spherical rectangle is too small or seen edge-on: the scalar path
                 // falls back to area sampling there.
-                None => lights[i].sample(at, u, strategy),
+                None => put(l, lights[i].sample(at, u, strategy)),
             }
-        })
+        }
     }
 }
 

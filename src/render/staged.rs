@@ -125,8 +125,13 @@ fn sample_batch(
             }
             Begun::Done(_) => unreachable!("only staged light samples are batched"),
         });
-    let drawn = lanes.sample(&scene.lights, estimator.lights, &jobs, batch.len());
-    for (&k, ls) in batch.iter().zip(drawn) {
-        samples[k] = ls;
-    }
+    lanes.sample_each(
+        &scene.lights,
+        estimator.lights,
+        &jobs,
+        batch.len(),
+        |l, ls| {
+            samples[batch[l]] = ls;
+        },
+    );
 }
