@@ -238,6 +238,15 @@ fn check(case: &Case, out: &Path) -> Option<String> {
         wrong.push(format!("left {:?}", left[0].file_name()));
     }
     if case.code == 0 {
+        // The image it was asked for must be there (`-o PATH`), and every image read back.
+        let asked = case
+            .args
+            .iter()
+            .position(|a| a == "-o")
+            .map(|i| &case.args[i + 1]);
+        if let Some(path) = asked.filter(|p| !Path::new(p).exists()) {
+            wrong.push(format!("wrote no {path}"));
+        }
         wrong.extend(left.iter().filter_map(|f| unreadable(case, &f.path())));
     }
     for f in left {
@@ -247,8 +256,9 @@ fn check(case: &Case, out: &Path) -> Option<String> {
 }
 
 /// What is wrong with an image a successful run wrote, if anything: it must read back
-/// whole with every pixel finite, and an EXR of `render` must name the scene as it was
-/// given (`lightlab.scene`, a path beyond Latin-1 included).
+/// whole with every value finite (its variances too), and an EXR of `render` given a
+/// scene file must name the scene as it was given (`lightlab.scene`, a path beyond
+/// Latin-1 included).
 fn unreadable(case: &Case, path: &Path) -> Option<String> {
     let name = path.file_name()?.to_string_lossy().into_owned();
     let image = match read_image(path) {
@@ -256,12 +266,18 @@ fn unreadable(case: &Case, path: &Path) -> Option<String> {
         Err(e) => return Some(format!("wrote {name}, which does not read back: {e}")),
     };
     let pixels = image.width as usize * image.height as usize;
-    if image.rgb.len() != pixels || image.rgb.iter().any(|c| !c.is_finite()) {
-        return Some(format!("wrote {name} with missing or non-finite pixels"));
+    let variance = image.variance.as_deref().unwrap_or_default();
+    let mut values = image.rgb.iter().chain(variance);
+    if image.rgb.len() != pixels || values.any(|c| !c.is_finite()) {
+        return Some(format!("wrote {name} with missing or non-finite values"));
     }
     let exr = path.extension().is_some_and(|e| e == "exr");
+    let scene = case
+        .args
+        .get(1)
+        .filter(|a| !a.starts_with('-') && !a.starts_with("builtin:"));
     if exr && case.args.first().is_some_and(|a| a == "render") {
-        let scene = case.args.get(1)?;
+        let scene = scene?;
         let named = |(k, v): &(String, String)| k == "lightlab.scene" && v == scene;
         if !image.metadata.iter().any(named) {
             return Some(format!("{name} does not name its scene {scene}"));

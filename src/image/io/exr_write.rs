@@ -40,9 +40,10 @@ fn values(p: &PixelStats) -> [f32; 6] {
 }
 
 /// Whether a text attribute may not take `name`: one that lightlab writes itself
-/// (`spp`), or one of OpenEXR's standard attributes (the `exr` crate's list), which
+/// (`spp`), or one of the standard attributes the `exr` crate knows (its list), which
 /// readers interpret rather than hand over as text: a text `owner` or `comments` would
 /// come back as a typed field, a `chunkCount` or `type` would change how the file reads.
+/// (Names OpenEXR added later, such as `cameraMake`, are not in that list.)
 fn reserved(name: &str) -> bool {
     name == "spp" || exr::meta::header::standard_names::ALL.contains(&name.as_bytes())
 }

@@ -1,8 +1,8 @@
 //! The writer against the `exr` crate's reader (its own ZIP decoder): every channel's
 //! bits, the header's attributes, blocks stored compressed and raw, long and non-Latin
 //! names and values (the long-names flag from 32 bytes), and the names a text attribute
-//! may not take; the layout of a one-pixel file byte by byte, and the same bytes on any
-//! number of threads.
+//! may not take; the layout of a one-pixel file and every header value in it (the
+//! pixel data through the reader), and the same bytes on any number of threads.
 
 use super::*;
 use crate::image::io::read_image;
@@ -273,7 +273,7 @@ fn the_file_is_the_same_on_any_number_of_threads() {
 }
 
 #[test]
-fn a_one_pixel_file_has_the_layout_of_the_specification() {
+fn a_one_pixel_file_has_the_layout_and_values_of_the_specification() {
     let film = film(1, 1, 2, 4);
     let scratch = Scratch::new("layout");
     let path = scratch.file("one.exr");
@@ -322,10 +322,34 @@ fn a_one_pixel_file_has_the_layout_of_the_specification() {
         ]
     );
     let value = |name: &str| &attributes.iter().find(|a| a.0 == name).unwrap().3;
+    // Each channel: its name, FLOAT (2), pLinear (set for the variances), three reserved
+    // bytes, x and y sampling 1; then the list's closing zero.
+    let mut channels = Vec::new();
+    for (name, linear) in [("B", 0), ("G", 0), ("R", 0)].into_iter().chain([
+        ("variance.B", 1),
+        ("variance.G", 1),
+        ("variance.R", 1),
+    ]) {
+        channels.extend_from_slice(name.as_bytes());
+        channels.push(0);
+        channels.extend_from_slice(&[2, 0, 0, 0, linear, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0]);
+    }
+    channels.push(0);
+    assert_eq!(value("channels"), &channels);
     assert_eq!(value("compression"), &[3], "ZIP, blocks of 16 rows");
-    assert_eq!(value("lineOrder"), &[0], "increasing y");
     assert_eq!(value("dataWindow"), &[0; 16], "the box (0, 0)–(0, 0)");
+    assert_eq!(value("displayWindow"), &[0; 16]);
+    assert_eq!(value("lineOrder"), &[0], "increasing y");
+    assert_eq!(value("pixelAspectRatio"), &1f32.to_le_bytes());
+    assert_eq!(value("screenWindowCenter"), &[0; 8]);
+    assert_eq!(value("screenWindowWidth"), &1f32.to_le_bytes());
+    assert_eq!(
+        value("software"),
+        b"lightlab",
+        "no closing zero in the value"
+    );
     assert_eq!(value("spp"), &2i32.to_le_bytes());
+    assert_eq!(value("lightlab.k"), b"v");
     // One chunk: the offset table's only entry points just past itself, at the chunk of
     // row 0, whose data runs to the end of the file.
     let offset = u64::from_le_bytes(bytes[end..end + 8].try_into().unwrap()) as usize;
