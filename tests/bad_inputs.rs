@@ -1,9 +1,9 @@
 //! Hostile inputs through the built binary: every row of `tests/bad_inputs/cases.tsv`
 //! (written by `make_cases.py`, plus the fuzzer's findings) runs `lightlab` and checks
 //! its exit code, the place its error names (file:line:col or a flag), the words of the
-//! message, and that it neither panics, hangs nor leaves an output file behind; the
-//! images of a case that succeeds must read back whole and finite. Large and binary
-//! inputs are generated here into `$GEN`.
+//! message, and that it neither panics, hangs nor leaves an output file behind; a case
+//! that succeeds must write the file its `-o` names, and its images must read back whole
+//! and finite. Large and binary inputs are generated here into `$GEN`.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -243,7 +243,7 @@ fn check(case: &Case, out: &Path) -> Option<String> {
             .args
             .iter()
             .position(|a| a == "-o")
-            .map(|i| &case.args[i + 1]);
+            .and_then(|i| case.args.get(i + 1));
         if let Some(path) = asked.filter(|p| !Path::new(p).exists()) {
             wrong.push(format!("wrote no {path}"));
         }
