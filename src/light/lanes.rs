@@ -54,27 +54,14 @@ impl LightLanes {
         matches!(self.frames.get(index), Some(Some(_)))
     }
 
-    /// `lights[i].sample(at, u, strategy)` for each of the first `used` jobs `(i, at, u)`
-    /// (`None` for the others, which only fill the lanes), every light `i` one that
+    /// `lights[i].sample(at, u, strategy)` for each of the first `used` jobs `(i, at, u)`,
+    /// handed to `put(l, sample)` with the job's lane `l` so that the caller stores it
+    /// where it is wanted (returned as an array, each 60-byte sample was copied twice more
+    /// on its way); the other jobs only fill the lanes. Every light `i` is one that
     /// [`LightLanes::has`]; `lights` and `strategy` must be the ones the lanes were made
     /// with.
-    pub fn sample(
-        &self,
-        lights: &[Light],
-        strategy: LightStrategy,
-        jobs: &[LaneJob; LANES],
-        used: usize,
-    ) -> [Option<LightSample>; LANES] {
-        let mut out = [None; LANES];
-        self.sample_each(lights, strategy, jobs, used, |l, ls| out[l] = ls);
-        out
-    }
-
-    /// [`LightLanes::sample`], handing job `l`'s sample to `put(l, sample)` for each of
-    /// the first `used` jobs, so that the caller stores it where it is wanted (returned
-    /// as an array, each 60-byte sample was copied twice more on its way).
     #[inline(always)]
-    pub fn sample_each(
+    pub fn sample(
         &self,
         lights: &[Light],
         strategy: LightStrategy,
@@ -159,10 +146,19 @@ mod tests {
             });
             let jobs: [LaneJob; LANES] =
                 std::array::from_fn(|l| (with[(k + l) % with.len()], &points[l], rng.next_2d()));
-            let wide = lanes.sample(&scene.lights, strategy, &jobs, LANES);
-            // Fewer jobs than lanes: the rest are None, the first the same.
-            let some = lanes.sample(&scene.lights, strategy, &jobs, 2);
-            assert!(some[2..].iter().all(Option::is_none));
+            let drawn = |used: usize| {
+                let mut out = [None; LANES];
+                let mut calls = 0;
+                lanes.sample(&scene.lights, strategy, &jobs, used, |l, ls| {
+                    out[l] = ls;
+                    calls += 1;
+                });
+                assert_eq!(calls, used, "one sample per job");
+                out
+            };
+            let wide = drawn(LANES);
+            // Fewer jobs than lanes: only the first are handed on, the same.
+            let some = drawn(2);
             let bits = |s: &Option<LightSample>| {
                 s.map(|s| {
                     (

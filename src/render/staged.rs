@@ -125,7 +125,7 @@ fn sample_batch(
             }
             Begun::Done(_) => unreachable!("only staged light samples are batched"),
         });
-    lanes.sample_each(
+    lanes.sample(
         &scene.lights,
         estimator.lights,
         &jobs,
