@@ -2,40 +2,48 @@
 //! f · G · V · Le / p_A — computed here as f · cos θ_x · Le / p_ω with the density
 //! converted to solid angle, which is the same quantity.
 
+use super::mis::draw_light;
 use super::probe::{ProbeSample, no_direction};
 use super::{Context, f_cos};
 use crate::light::LightSample;
-use crate::light::select::LightSelector;
+use crate::light::select::Selection;
 use crate::math::Spectrum;
 use crate::sampling::Uniform;
 
 /// One sample of the light estimator. The selection number is reused for nothing else
-/// here; the point on the light takes its own two numbers.
+/// here; the point on the light takes its own two numbers (drawn in that order by
+/// [`draw_light`], as the `mis` estimate draws them).
 pub(super) fn estimate(ctx: &Context<'_>, src: &mut impl Uniform) -> Spectrum {
+    if let Some(m) = ctx.ris {
+        return super::ris::estimate(ctx, src, m);
+    }
+    let draw = draw_light(ctx.selector, ctx.at, src);
+    // Horizon rejection happens inside `sample`, before any shadow ray (lecture: check
+    // cos θ₁ < 0 before evaluating visibility); without it the shadow ray comes first,
+    // as in the naive loop, and f·cos = 0 scores the sample.
+    let ls = draw
+        .selection
+        .and_then(|sel| ctx.scene.lights[sel.index].sample(ctx.at, draw.u_point, ctx.lights));
+    score(ctx, draw.selection, ls)
+}
+
+/// The light estimate of the light sample `ls` of the light `selection` chose (either
+/// `None`: nothing): f · cos θ_x · Le / p_ω unless the light is hidden. [`estimate`]'s
+/// last step, and the light estimator's last stage ([`super::Estimator::finish`]).
+#[inline(always)]
+pub(super) fn score(
+    ctx: &Context<'_>,
+    selection: Option<Selection>,
+    ls: Option<LightSample>,
+) -> Spectrum {
     let Context {
-        scene,
-        selector,
         lights,
-        at,
         hit,
         material,
         w_out,
         ..
     } = *ctx;
-    if let Some(m) = ctx.ris {
-        return super::ris::estimate(ctx, src, m);
-    }
-    let u_select = src.next_1d();
-    let u_point = src.next_2d();
-    let Some(sel) = selector.select(at, u_select) else {
-        ctx.record(|| no_direction("light"));
-        return Spectrum::ZERO;
-    };
-    let light = &scene.lights[sel.index];
-    // Horizon rejection happens inside `sample`, before any shadow ray (lecture: check
-    // cos θ₁ < 0 before evaluating visibility); without it the shadow ray comes first,
-    // as in the naive loop, and f·cos = 0 scores the sample.
-    let Some(ls) = light.sample(at, u_point, lights) else {
+    let (Some(sel), Some(ls)) = (selection, ls) else {
         ctx.record(|| no_direction("light"));
         return Spectrum::ZERO;
     };

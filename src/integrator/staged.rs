@@ -1,18 +1,22 @@
-//! The `mis` estimate in stages, so that a renderer can sample the lights of many
+//! The `mis` and `light` estimates in stages, so that a renderer can sample the lights of many
 //! shading points together ([`crate::light::LightLanes`]): [`Estimator::begin`] turns the
 //! camera ray's hit to the side it is seen from and draws the light sample's numbers and
 //! light, the caller samples
 //! that light at [`Staged::at`] with [`Staged::u_point`], and [`Estimator::finish`] scores
-//! the light sample and draws the BSDF samples. Every number is drawn in the order
+//! the light sample and (for `mis`) draws the BSDF samples. Every number is drawn in the order
 //! [`Estimator::radiance_from`] draws it, so the estimate is the same bit for bit.
 //!
 //! Stages apply to the balance and power heuristics with one light sample (the default
-//! and Mitsuba's `direct`), without resampling; [`Estimator::stages`] says when.
+//! and Mitsuba's `direct`) and to the `light` estimator (its one light sample drawn
+//! the same way, scored alone by [`super::light::score`]), without resampling;
+//! [`Estimator::stages`] says when.
 
 use glam::{Vec2, Vec3};
 
 use super::mis::{self, LightDraw};
-use super::{Estimator, EstimatorKind, MisHeuristic, Shading, emitted_at, oriented, shading_point};
+use super::{
+    Estimator, EstimatorKind, MisHeuristic, Shading, emitted_at, light, oriented, shading_point,
+};
 use crate::geometry::{Ray, SurfaceHit};
 use crate::light::select::Selection;
 use crate::light::{LightSample, ShadingPoint};
@@ -59,16 +63,21 @@ impl Staged {
 }
 
 impl Estimator {
-    /// Whether [`Estimator::begin`] and [`Estimator::finish`] apply: the `mis` estimator
-    /// with the balance or power heuristic, one light sample, no resampling.
+    /// Whether [`Estimator::begin`] and [`Estimator::finish`] apply: the `light`
+    /// estimator, and the `mis` estimator with the balance or power heuristic and one
+    /// light sample; neither with resampling.
     pub fn stages(&self) -> bool {
-        self.kind == EstimatorKind::Mis
-            && matches!(
-                self.mis.heuristic,
-                MisHeuristic::Balance | MisHeuristic::Power
-            )
-            && self.mis.light_samples == 1
-            && self.ris.is_none()
+        let staged_kind = match self.kind {
+            EstimatorKind::Light => true,
+            EstimatorKind::Mis => {
+                matches!(
+                    self.mis.heuristic,
+                    MisHeuristic::Balance | MisHeuristic::Power
+                ) && self.mis.light_samples == 1
+            }
+            _ => false,
+        };
+        staged_kind && self.ris.is_none()
     }
 
     /// The first stage of [`Estimator::radiance_from`] along camera ray `ray` with
@@ -113,6 +122,11 @@ impl Estimator {
         let w_out = -ray.d.normalize();
         let sh = Shading::at(scene, hit, w_out).expect("begin found the hit seen from the front");
         let ctx = self.context(scene, &sh.at, &sh.hit, &sh.material, sh.w_out);
-        staged.emitted + mis::finish(&ctx, self.mis, &staged.draw, ls, src)
+        let reflected = if self.kind == EstimatorKind::Light {
+            light::score(&ctx, staged.draw.selection, ls)
+        } else {
+            mis::finish(&ctx, self.mis, &staged.draw, ls, src)
+        };
+        staged.emitted + reflected
     }
 }

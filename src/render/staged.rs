@@ -2,11 +2,11 @@
 //! [`LANES`] shading points at a time ([`LightLanes`]: rectangles under `solid-angle`).
 //!
 //! Where the estimator runs in stages ([`Estimator::stages`]: `mis` with the balance or
-//! power heuristic and one light sample), the camera packets shade a chunk in three
-//! passes: every sample's hit and light choice ([`Estimator::begin`]), the light samples
-//! (those of lights with lanes [`LANES`] at a time), every sample's score and BSDF samples
-//! ([`Estimator::finish`]). The estimates are the one-at-a-time ones bit for bit; only
-//! the light sampling's work is shared.
+//! power heuristic and one light sample, and `light`), the camera packets shade a chunk
+//! in three passes: every sample's hit and light choice ([`Estimator::begin`]), the
+//! light samples (those of lights with lanes [`LANES`] at a time), every sample's score
+//! and BSDF samples ([`Estimator::finish`]). The estimates are the one-at-a-time ones
+//! bit for bit; only the light sampling's work is shared.
 
 use glam::Vec2;
 

@@ -49,18 +49,23 @@ fn set_up(
 /// multiple of the packet and with optimal MIS's per-pixel state; and on scenes whose
 /// rays are traced one at a time (a BVH of one node, or a scene tested without a
 /// tree). Where the estimate runs
-/// in stages with light lanes, with them and without.
+/// in stages with light lanes (`mis` and `light`), with them and without.
 #[test]
 fn packets_give_the_samples_of_single_rays() {
-    // (scene, optimal MIS, height of the tile's centre as a share of the image's)
-    for (spec, optimal_mis, at) in [
-        ("builtin:assignment", false, 0.5),
-        ("builtin:materials", false, 0.5),
-        ("tests/scenes/mesh_obj.xml", false, 0.5),
-        ("builtin:veach-mis", true, 0.8),
-        ("tests/scenes/tent_point.xml", false, 0.85),
-        ("tests/scenes/microfacet_conductor.xml", false, 0.75),
+    // (scene, estimator: the scene's own, optimal MIS or `light`, height of the tile's
+    // centre as a share of the image's)
+    for (spec, which, at) in [
+        ("builtin:assignment", "own", 0.5),
+        ("builtin:assignment", "light", 0.5),
+        ("builtin:materials", "own", 0.5),
+        ("tests/scenes/mesh_obj.xml", "own", 0.5),
+        ("tests/scenes/mesh_obj.xml", "light", 0.5),
+        ("builtin:veach-mis", "optimal", 0.8),
+        ("tests/scenes/tent_point.xml", "own", 0.85),
+        ("tests/scenes/tent_point.xml", "light", 0.85),
+        ("tests/scenes/microfacet_conductor.xml", "own", 0.75),
     ] {
+        let optimal_mis = which == "optimal";
         let scene = load(spec).expect("scene");
         // mesh_obj and veach-mis trace packets; the others one ray at a time: two have a
         // BVH of one node, and assignment, materials and microfacet_conductor are few
@@ -73,6 +78,9 @@ fn packets_give_the_samples_of_single_rays() {
         if optimal_mis {
             scenes_own.estimator = EstimatorKind::Mis;
             scenes_own.mis.heuristic = MisHeuristic::Optimal;
+        }
+        if which == "light" {
+            scenes_own.estimator = EstimatorKind::Light;
         }
         // Independent numbers, and Sobol's points and the strata's cells drawn a chunk
         // at a time.
@@ -137,14 +145,14 @@ fn packets_give_the_samples_of_single_rays() {
                 let b = trace(&single, tile, samples.clone(), key);
                 assert_eq!(a.len(), 24 * n);
                 assert!(a.iter().any(|s| s.3 != [0; 3]), "{spec}: all black");
-                assert_eq!(a, b, "{spec} {sampler:?} {samples:?}");
+                assert_eq!(a, b, "{spec} {which} {sampler:?} {samples:?}");
                 if lanes.is_some() {
                     let whole = CameraPackets {
                         lanes: None,
                         ..packets
                     };
                     let c = trace(&whole, tile, samples.clone(), key);
-                    assert_eq!(c, b, "{spec} {sampler:?} without lanes");
+                    assert_eq!(c, b, "{spec} {which} {sampler:?} without lanes");
                 }
             }
         }
