@@ -1,7 +1,8 @@
 //! Light samples of several shading points at once, for the lights whose sampling has a
-//! lanes version: rectangles under `solid-angle` with the fast paths on
-//! ([`sample_lanes`]). Every sample is the one [`Light::sample`] gives at the same
-//! shading point with the same numbers, bit for bit; only the work is shared.
+//! lanes version, with the fast paths on: rectangles under `solid-angle`
+//! ([`sample_lanes`]) and spheres under `solid-angle` ([`sphere_lanes::sample_lanes`]).
+//! Every sample is the one [`Light::sample`] gives at the same shading point with the
+//! same numbers, bit for bit; only the work is shared.
 //!
 //! A renderer that has many shading points waiting for a light sample (the camera
 //! packets' shading points, after [`Estimator::begin`](crate::integrator::Estimator::begin))
@@ -9,17 +10,32 @@
 
 use glam::Vec2;
 
-use super::area::light_sample;
+use super::area::sphere_lanes::{self, SphereLane};
+use super::area::{AreaLight, light_sample};
 use super::{Light, LightPoint, LightSample, LightSampling, LightStrategy, ShadingPoint};
 use crate::geometry::Shape;
 use crate::sampling::warp::{LANES, RectangleFrame, RectangleLane, sample_lanes};
+
+/// A light's lanes version, with what it precomputes.
+#[derive(Clone, Debug)]
+enum Lanes {
+    /// A rectangle under `solid-angle`, with its edge frame.
+    Rectangle(RectangleFrame),
+    /// A sphere under `solid-angle`.
+    Sphere,
+}
 
 /// Which lights of a scene have a lanes version under one strategy, with what they
 /// precompute for it (a rectangle's edge frame).
 #[derive(Clone, Debug)]
 pub struct LightLanes {
-    frames: Vec<Option<RectangleFrame>>,
+    lanes: Vec<Option<Lanes>>,
+    /// Whether some light is a sphere with lanes (else every job is a rectangle's).
+    spheres: bool,
 }
+
+/// Kernels of [`LightLanes`] (rectangles, spheres); see [`LightLanes::kernel`].
+pub const KERNELS: usize = 2;
 
 /// One shading point's request: the light, the shading point, the two numbers.
 pub type LaneJob<'a> = (usize, &'a ShadingPoint, Vec2);
@@ -28,30 +44,47 @@ impl LightLanes {
     /// The lanes of `lights` under `strategy`, or `None` when no light has one (then
     /// there is nothing to share).
     pub fn new(lights: &[Light], strategy: LightStrategy) -> Option<LightLanes> {
-        let frames: Vec<Option<RectangleFrame>> = lights
+        let lanes: Vec<Option<Lanes>> = lights
             .iter()
             .map(|light| match light {
-                Light::Area(a) if strategy.fast_paths => match &a.shape {
-                    Shape::Rectangle(r)
-                        if a.strategy(strategy.sampling) == LightSampling::SolidAngle =>
-                    {
-                        RectangleFrame::new(r.ea, r.eb)
+                Light::Area(a)
+                    if strategy.fast_paths
+                        && a.strategy(strategy.sampling) == LightSampling::SolidAngle =>
+                {
+                    match &a.shape {
+                        Shape::Rectangle(r) => {
+                            RectangleFrame::new(r.ea, r.eb).map(Lanes::Rectangle)
+                        }
+                        Shape::Sphere(_) => Some(Lanes::Sphere),
+                        _ => None,
                     }
-                    _ => None,
-                },
+                }
                 _ => None,
             })
             .collect();
-        frames
+        let spheres = lanes.iter().any(|l| matches!(l, Some(Lanes::Sphere)));
+        lanes
             .iter()
             .any(Option::is_some)
-            .then_some(LightLanes { frames })
+            .then_some(LightLanes { lanes, spheres })
     }
 
     /// Whether light `index` has a lanes version.
     #[inline]
     pub fn has(&self, index: usize) -> bool {
-        matches!(self.frames.get(index), Some(Some(_)))
+        self.kernel(index).is_some()
+    }
+
+    /// Which kernel light `index` goes through (`Some(k)`, `k` < [`KERNELS`]), if it
+    /// has a lanes version: a caller that batches jobs by kernel fills every lane of
+    /// each call.
+    #[inline]
+    pub fn kernel(&self, index: usize) -> Option<usize> {
+        match self.lanes.get(index) {
+            Some(Some(Lanes::Rectangle(_))) => Some(0),
+            Some(Some(Lanes::Sphere)) => Some(1),
+            _ => None,
+        }
     }
 
     /// `lights[i].sample(at, u, strategy)` for each of the first `used` jobs `(i, at, u)`,
@@ -59,7 +92,8 @@ impl LightLanes {
     /// where it is wanted (returned as an array, each 60-byte sample was copied twice more
     /// on its way); the other jobs only fill the lanes. Every light `i` is one that
     /// [`LightLanes::has`]; `lights` and `strategy` must be the ones the lanes were made
-    /// with.
+    /// with. Jobs of rectangles and of spheres go through their own kernels (each kernel
+    /// runs only when some job is of its kind).
     #[inline(always)]
     pub fn sample(
         &self,
@@ -69,45 +103,134 @@ impl LightLanes {
         used: usize,
         mut put: impl FnMut(usize, Option<LightSample>),
     ) {
-        let rectangle = |i: usize| match &lights[i] {
-            Light::Area(a) => match &a.shape {
-                Shape::Rectangle(r) => (a, r),
-                _ => unreachable!("light {i} has no lanes version"),
-            },
-            _ => unreachable!("light {i} has no lanes version"),
+        if !self.spheres {
+            return self.rectangles(lights, strategy, jobs, used, &mut put, |_| true);
+        }
+        let is_sphere = |l: usize| matches!(self.lanes[jobs[l].0], Some(Lanes::Sphere));
+        let of_spheres = (0..used).filter(|&l| is_sphere(l)).count();
+        if of_spheres < used {
+            self.rectangles(lights, strategy, jobs, used, &mut put, |l| !is_sphere(l));
+        }
+        if of_spheres > 0 {
+            spheres(lights, strategy, jobs, used, &mut put, is_sphere);
+        }
+    }
+
+    /// [`LightLanes::sample`] for the jobs `l < used` that `mine(l)` (all rectangles;
+    /// the other lanes repeat the first of them).
+    #[inline(always)]
+    fn rectangles(
+        &self,
+        lights: &[Light],
+        strategy: LightStrategy,
+        jobs: &[LaneJob; LANES],
+        used: usize,
+        put: &mut impl FnMut(usize, Option<LightSample>),
+        mine: impl Fn(usize) -> bool,
+    ) {
+        let rectangle = |i: usize| match &area(lights, i).shape {
+            Shape::Rectangle(r) => r,
+            _ => unreachable!("light {i} has no rectangle lanes"),
         };
+        let pick = filled(used, &mine);
         let lane: [RectangleLane; LANES] = std::array::from_fn(|l| {
-            let (i, at, u) = jobs[l];
+            let (i, at, u) = jobs[pick(l)];
+            let Some(Lanes::Rectangle(frame)) = &self.lanes[i] else {
+                unreachable!("light {i} has no rectangle lanes")
+            };
             RectangleLane {
-                frame: self.frames[i].as_ref().expect("a light with lanes"),
-                corner: rectangle(i).1.o,
+                frame,
+                corner: rectangle(i).o,
                 p: at.p,
                 u,
             }
         });
+        // As rectangle::sample's fast path: the point p + offset, the plane's normal.
         let drawn = sample_lanes(&lane);
-        for (l, &(i, at, u)) in jobs.iter().enumerate().take(used) {
-            let (light, r) = rectangle(i);
-            match drawn[l] {
-                // As rectangle::sample's fast path, then AreaLight::sample_with.
-                Some((offset, pdf)) => {
-                    let y = at.p + offset;
-                    let point = LightPoint {
-                        y,
-                        ny: r.normal,
-                        pdf,
-                    };
-                    put(
-                        l,
-                        light_sample(at, point, strategy.horizon_rejection, |ny, w| {
-                            light.emitted(y, ny, w)
-                        }),
-                    );
-                }
-                // The spherical rectangle is too small or seen edge-on: the scalar path
-                // falls back to area sampling there.
-                None => put(l, lights[i].sample(at, u, strategy)),
+        let point = |l: usize, i: usize, at: &ShadingPoint| {
+            drawn[l].map(|(offset, pdf)| LightPoint {
+                y: at.p + offset,
+                ny: rectangle(i).normal,
+                pdf,
+            })
+        };
+        put_samples(lights, strategy, jobs, used, put, &mine, point);
+    }
+}
+
+/// [`LightLanes::sample`] for the jobs `l < used` that `mine(l)` (all spheres; the
+/// other lanes repeat the first of them).
+#[inline(always)]
+fn spheres(
+    lights: &[Light],
+    strategy: LightStrategy,
+    jobs: &[LaneJob; LANES],
+    used: usize,
+    put: &mut impl FnMut(usize, Option<LightSample>),
+    mine: impl Fn(usize) -> bool,
+) {
+    let pick = filled(used, &mine);
+    let lane: [SphereLane; LANES] = std::array::from_fn(|l| {
+        let (i, at, u) = jobs[pick(l)];
+        let Shape::Sphere(sphere) = area(lights, i).shape else {
+            unreachable!("light {i} has no sphere lanes")
+        };
+        SphereLane { sphere, p: at.p, u }
+    });
+    let points = sphere_lanes::sample_lanes(&lane);
+    put_samples(lights, strategy, jobs, used, put, &mine, |l, _, _| {
+        points[l]
+    });
+}
+
+/// The area light `lights[i]` (one with lanes).
+#[inline(always)]
+fn area(lights: &[Light], i: usize) -> &AreaLight {
+    match &lights[i] {
+        Light::Area(a) => a,
+        _ => unreachable!("light {i} has no lanes version"),
+    }
+}
+
+/// The lane whose job lane `l` takes: its own when it is one of the first `used` and
+/// `mine`, else the first such (a kernel's other lanes only fill it).
+#[inline(always)]
+fn filled(used: usize, mine: &impl Fn(usize) -> bool) -> impl Fn(usize) -> usize + '_ {
+    let first = (0..used).find(|&l| mine(l)).expect("a job for the kernel");
+    move |l| if l < used && mine(l) { l } else { first }
+}
+
+/// Hands on the samples of the jobs `l < used` that `mine(l)`, from the kernel's
+/// `point(l, i, at)` of lane `l` (light `i`, shading point `at`): each as
+/// `AreaLight::sample_with` makes it from its shape's point, and where the kernel has
+/// none (a spherical rectangle too small or seen edge-on, a shading point inside a
+/// sphere) the scalar sample, which takes the area there. (The points are made one at
+/// a time, as they are handed on: gathered in an array first, they cost the
+/// rectangles' stage 8 % more instructions.)
+#[inline(always)]
+fn put_samples(
+    lights: &[Light],
+    strategy: LightStrategy,
+    jobs: &[LaneJob; LANES],
+    used: usize,
+    put: &mut impl FnMut(usize, Option<LightSample>),
+    mine: &impl Fn(usize) -> bool,
+    point: impl Fn(usize, usize, &ShadingPoint) -> Option<LightPoint>,
+) {
+    for (l, &(i, at, u)) in jobs.iter().enumerate().take(used) {
+        if !mine(l) {
+            continue;
+        }
+        match point(l, i, at) {
+            Some(point) => {
+                let (light, y) = (area(lights, i), point.y);
+                let emitted = |ny, w| light.emitted(y, ny, w);
+                put(
+                    l,
+                    light_sample(at, point, strategy.horizon_rejection, emitted),
+                );
             }
+            None => put(l, lights[i].sample(at, u, strategy)),
         }
     }
 }
@@ -120,66 +243,108 @@ mod tests {
     use crate::sampling::{Rng32, Uniform};
     use crate::scene::load;
 
-    /// On a scene with rectangle and other lights, the lanes give every job the scalar
-    /// sample bit for bit, at points all around the rectangles (near, grazing, behind).
+    /// The bits of a sample, to compare them exactly.
+    type Bits = ([u32; 3], [u32; 3], [u32; 3], u32, u32);
+
+    fn bits(s: &Option<LightSample>) -> Option<Bits> {
+        s.map(|s| {
+            (
+                s.point.to_array().map(f32::to_bits),
+                s.w_in.to_array().map(f32::to_bits),
+                s.radiance.to_array().map(f32::to_bits),
+                s.pdf.to_bits(),
+                s.distance.to_bits(),
+            )
+        })
+    }
+
+    /// On scenes with rectangle lights (`assignment`), sphere lights and a rectangle
+    /// together (`sphere-near-plane`, so batches mix the two kernels) and a hundred
+    /// spheres and quads (`shirley-100`), the lanes give every job the scalar sample bit
+    /// for bit, at points all around the lights (near, grazing, behind, and inside the
+    /// spheres, where the scalar path samples the area), with every lane used and with
+    /// two.
     #[test]
     fn lanes_are_the_scalar_samples() {
-        let scene = load("builtin:assignment").expect("scene");
-        let strategy = LightStrategy::default();
-        let lanes = LightLanes::new(&scene.lights, strategy).expect("a rectangle light");
-        let with: Vec<usize> = (0..scene.lights.len()).filter(|&i| lanes.has(i)).collect();
-        assert!(!with.is_empty());
-        // Off: no fast paths, no lanes.
-        let slow = LightStrategy {
-            fast_paths: false,
-            ..strategy
-        };
-        assert!(LightLanes::new(&scene.lights, slow).is_none());
-        let mut rng = Rng32::new(3);
-        let mut compared = 0;
-        for k in 0..5000 {
-            let points: [ShadingPoint; LANES] = std::array::from_fn(|_| {
-                let p = (Vec3::new(rng.next_1d(), rng.next_1d(), rng.next_1d()) - 0.5) * 8.0;
-                let n =
-                    Vec3::new(rng.next_1d() - 0.5, rng.next_1d(), rng.next_1d() - 0.5).normalize();
-                ShadingPoint { p, ng: n, n }
-            });
-            let jobs: [LaneJob; LANES] =
-                std::array::from_fn(|l| (with[(k + l) % with.len()], &points[l], rng.next_2d()));
-            let drawn = |used: usize| {
-                let mut out = [None; LANES];
-                let mut calls = 0;
-                lanes.sample(&scene.lights, strategy, &jobs, used, |l, ls| {
-                    out[l] = ls;
-                    calls += 1;
+        for (spec, size) in [
+            ("builtin:assignment", 8.0),
+            ("builtin:sphere-near-plane", 3.0),
+            ("builtin:shirley-100", 12.0),
+        ] {
+            let scene = load(spec).expect("scene");
+            let strategy = LightStrategy::default();
+            let lanes = LightLanes::new(&scene.lights, strategy).expect("lights with lanes");
+            let with: Vec<usize> = (0..scene.lights.len()).filter(|&i| lanes.has(i)).collect();
+            let sphere = |i: usize| match &scene.lights[i] {
+                Light::Area(a) => match &a.shape {
+                    Shape::Sphere(s) => Some(*s),
+                    _ => None,
+                },
+                _ => None,
+            };
+            // Off: no fast paths, no lanes.
+            let slow = LightStrategy {
+                fast_paths: false,
+                ..strategy
+            };
+            assert!(LightLanes::new(&scene.lights, slow).is_none());
+            let mut rng = Rng32::new(3);
+            // Samples compared of rectangles and of spheres, and jobs from inside one.
+            let (mut rectangles, mut spheres, mut inside) = (0, 0, 0);
+            for k in 0..4000 {
+                let jobs_lights: [usize; LANES] = std::array::from_fn(|_| {
+                    with[(rng.next_1d() * with.len() as f32) as usize % with.len()]
                 });
-                assert_eq!(calls, used, "one sample per job");
-                out
-            };
-            let wide = drawn(LANES);
-            // Fewer jobs than lanes: only the first are handed on, the same.
-            let some = drawn(2);
-            let bits = |s: &Option<LightSample>| {
-                s.map(|s| {
-                    (
-                        s.point.to_array().map(f32::to_bits),
-                        s.w_in.to_array().map(f32::to_bits),
-                        s.radiance.to_array().map(f32::to_bits),
-                        s.pdf.to_bits(),
-                        s.distance.to_bits(),
-                    )
-                })
-            };
-            for (l, got) in wide.iter().enumerate() {
-                let (i, at, u) = jobs[l];
-                let scalar = scene.lights[i].sample(at, u, strategy);
-                assert_eq!(bits(got), bits(&scalar), "light {i} at {}", at.p);
-                if l < 2 {
-                    assert_eq!(bits(&some[l]), bits(&scalar));
+                let points: [ShadingPoint; LANES] = std::array::from_fn(|l| {
+                    let mut p =
+                        (Vec3::new(rng.next_1d(), rng.next_1d(), rng.next_1d()) - 0.5) * size;
+                    if let Some(s) = sphere(jobs_lights[l]).filter(|_| k % 7 == l) {
+                        // Near the sphere: inside it, or just outside.
+                        let d = Vec3::new(rng.next_1d(), rng.next_1d(), rng.next_1d()) - 0.5;
+                        p = s.center + d.normalize_or_zero() * s.radius * 2.0 * rng.next_1d();
+                    }
+                    let n = Vec3::new(rng.next_1d() - 0.5, rng.next_1d(), rng.next_1d() - 0.5)
+                        .normalize();
+                    ShadingPoint { p, ng: n, n }
+                });
+                let jobs: [LaneJob; LANES] =
+                    std::array::from_fn(|l| (jobs_lights[l], &points[l], rng.next_2d()));
+                let drawn = |used: usize| {
+                    let mut out = [None; LANES];
+                    let mut calls = 0;
+                    lanes.sample(&scene.lights, strategy, &jobs, used, |l, ls| {
+                        out[l] = ls;
+                        calls += 1;
+                    });
+                    assert_eq!(calls, used, "one sample per job");
+                    out
+                };
+                let wide = drawn(LANES);
+                // Fewer jobs than lanes: only the first are handed on, the same.
+                let some = drawn(2);
+                for (l, got) in wide.iter().enumerate() {
+                    let (i, at, u) = jobs[l];
+                    let scalar = scene.lights[i].sample(at, u, strategy);
+                    assert_eq!(bits(got), bits(&scalar), "{spec}: light {i} at {}", at.p);
+                    if l < 2 {
+                        assert_eq!(bits(&some[l]), bits(&scalar), "{spec}: light {i}");
+                    }
+                    match sphere(i) {
+                        Some(s) if (at.p - s.center).length() <= s.radius => inside += 1,
+                        Some(_) => spheres += got.is_some() as u32,
+                        None => rectangles += got.is_some() as u32,
+                    }
                 }
-                compared += got.is_some() as u32;
             }
+            let has_spheres = with.iter().any(|&i| sphere(i).is_some());
+            let has_rectangles = with.iter().any(|&i| sphere(i).is_none());
+            assert_eq!(
+                has_rectangles,
+                rectangles > 2000,
+                "{spec}: {rectangles} samples"
+            );
+            assert_eq!(has_spheres, spheres > 1000, "{spec}: {spheres} samples");
+            assert_eq!(has_spheres, inside > 100, "{spec}: {inside} jobs inside");
         }
-        assert!(compared > 2000, "only {compared} samples");
     }
 }

@@ -14,7 +14,7 @@ pub use area::{
     UntexturableShape, check_sampling, sampling_summary, texture_uv_at, uniform_area_pdf,
 };
 pub use environment::Environment;
-pub use lanes::{LaneJob, LightLanes};
+pub use lanes::{KERNELS, LaneJob, LightLanes};
 pub use point::PointLight;
 pub use polygon::PolygonLight;
 pub use select::LightBounds;

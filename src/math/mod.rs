@@ -5,10 +5,12 @@
 pub mod atan;
 pub mod elliptic;
 pub mod exp;
+pub mod f32x8;
 pub mod f64x8;
 pub mod frame;
 pub mod spectrum;
 pub mod texture;
+pub mod wide;
 
 pub use frame::Frame;
 pub use spectrum::Spectrum;

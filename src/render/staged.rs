@@ -13,7 +13,7 @@ use glam::Vec2;
 use super::packets::{CameraPackets, Pending};
 use crate::geometry::SurfaceHit;
 use crate::integrator::{Begun, Estimator};
-use crate::light::{LaneJob, LightLanes, LightSample};
+use crate::light::{KERNELS, LaneJob, LightLanes, LightSample};
 use crate::math::Spectrum;
 use crate::sampling::warp::LANES;
 use crate::scene::Scene;
@@ -76,32 +76,35 @@ impl Stages {
     }
 
     /// The light sample of every staged estimate: those of lights with lanes
-    /// [`LANES`] at a time, the others one by one.
+    /// [`LANES`] at a time, batched by kernel (rectangles with rectangles, spheres
+    /// with spheres), the others one by one.
     fn sample_lights(&mut self, scene: &Scene, estimator: &Estimator, lanes: &LightLanes) {
         let Stages { begun, samples } = self;
         samples.clear();
         samples.resize(begun.len(), None);
-        let mut batch = [0usize; LANES];
-        let mut waiting = 0;
+        let mut batch = [[0usize; LANES]; KERNELS];
+        let mut waiting = [0; KERNELS];
         for (k, staged) in begun.iter().enumerate() {
             let Begun::Light(staged) = staged else {
                 continue;
             };
             let Some(sel) = staged.light() else { continue };
-            if lanes.has(sel.index) {
-                batch[waiting] = k;
-                waiting += 1;
-                if waiting == LANES {
-                    sample_batch(scene, estimator, lanes, begun, &batch, samples);
-                    waiting = 0;
+            if let Some(kernel) = lanes.kernel(sel.index) {
+                batch[kernel][waiting[kernel]] = k;
+                waiting[kernel] += 1;
+                if waiting[kernel] == LANES {
+                    sample_batch(scene, estimator, lanes, begun, &batch[kernel], samples);
+                    waiting[kernel] = 0;
                 }
             } else {
                 let light = &scene.lights[sel.index];
                 samples[k] = light.sample(staged.at(), staged.u_point(), estimator.lights);
             }
         }
-        if waiting > 0 {
-            sample_batch(scene, estimator, lanes, begun, &batch[..waiting], samples);
+        for (batch, &waiting) in batch.iter().zip(&waiting) {
+            if waiting > 0 {
+                sample_batch(scene, estimator, lanes, begun, &batch[..waiting], samples);
+            }
         }
     }
 }

@@ -12,6 +12,7 @@ mod projected;
 mod rectangle;
 mod sphere;
 mod sphere_geometric;
+pub(super) mod sphere_lanes;
 mod strategies;
 mod textured;
 mod triangle;

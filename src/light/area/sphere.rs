@@ -20,7 +20,7 @@ use crate::sampling::warp::{square_to_uniform_cone, square_to_uniform_sphere, un
 
 /// Slack of the visible-cap test on points handed to `pdf` (they come from rounding-prone
 /// ray hits near the silhouette).
-const CAP_SLACK: f32 = 1e-3;
+pub(super) const CAP_SLACK: f32 = 1e-3;
 
 /// The sphere seen from outside: direction from the centre to the shading point and the
 /// ratio r/D.
@@ -119,7 +119,16 @@ pub(super) fn sample(
             let cos_max = 1.0 - view.one_minus_cos_max();
             let (local, _) = square_to_uniform_cone(u, cos_max);
             let w = Frame::from_normal(-view.b).to_world(local);
-            cone_hit(s, at.p, w)
+            let (y, ny) = cone_hit(s, at.p, w);
+            // `pdf`'s value for this point from the view already at hand (the same
+            // formula on the same numbers: `pdf` would find the view again, a chain of
+            // two square roots and three divisions).
+            let pdf = if view.sees(ny) {
+                uniform_cone_pdf(Vec3::Z, cos_max)
+            } else {
+                0.0
+            };
+            return Some(LightPoint { y, ny, pdf });
         }
     };
     // The density of the point, by the one pdf function.

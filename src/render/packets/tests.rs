@@ -64,13 +64,18 @@ fn packets_give_the_samples_of_single_rays() {
         ("tests/scenes/tent_point.xml", "own", 0.85),
         ("tests/scenes/tent_point.xml", "light", 0.85),
         ("tests/scenes/microfacet_conductor.xml", "own", 0.75),
+        ("tests/scenes/gaussian_stratified.xml", "own", 0.5),
+        ("builtin:shirley-100", "own", 0.6),
     ] {
         let optimal_mis = which == "optimal";
         let scene = load(spec).expect("scene");
-        // mesh_obj and veach-mis trace packets; the others one ray at a time: two have a
-        // BVH of one node, and assignment, materials and microfacet_conductor are few
-        // enough shapes to be tested without a tree.
-        let packets = spec.ends_with("mesh_obj.xml") || spec.contains("veach");
+        // mesh_obj, veach-mis and shirley-100 (whose batches of light samples mix
+        // rectangles and spheres) trace packets; the others one ray at a time: some
+        // have a BVH of one node, others (assignment, materials, microfacet_conductor,
+        // gaussian_stratified) are few enough shapes to be tested without a tree.
+        let packets = ["mesh_obj.xml", "veach", "shirley"]
+            .iter()
+            .any(|name| spec.contains(name));
         let depth = scene.geometry.bvh().depth();
         let single = depth < MIN_PACKET_DEPTH || scene.geometry.is_flat();
         assert_eq!(single, !packets, "{spec}: depth {depth}");

@@ -22,12 +22,12 @@
 //! f32 `sin_cos` of u₀·S stays a per-lane call into the C library, as in the scalar
 //! version, so the bits agree.
 
-use glam::{DVec3, Vec2, Vec3};
+use glam::{Vec2, Vec3};
 
 use super::spherical_rectangle_fast::RectangleFrame;
 use super::spherical_triangle::MIN_SOLID_ANGLE;
 use crate::math::atan::atan_unit;
-use crate::math::f64x8::F64x8;
+use crate::math::f64x8::{F64x8, dot3 as dot, v3};
 
 /// Shading points per call: eight chains hide each other's latency better than four
 /// (43 → 34 ns a sample), and a staged chunk holds 64 samples.
@@ -75,34 +75,15 @@ fn sample_lanes_baseline(lane: &[RectangleLane; LANES]) -> [Option<(Vec3, f32)>;
     kernel(lane)
 }
 
-/// A vector's three coordinates over the lanes.
-type V3 = [F; 3];
-
-/// `[f(l).x, f(l).y, f(l).z]` over the lanes.
-#[inline(always)]
-fn v3(f: impl Fn(usize) -> DVec3) -> V3 {
-    [
-        F::from_fn(|l| f(l).x),
-        F::from_fn(|l| f(l).y),
-        F::from_fn(|l| f(l).z),
-    ]
-}
-
-/// `a · b` as glam's `DVec3::dot` sums it.
-#[inline(always)]
-fn dot(a: &V3, b: &V3) -> F {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
 /// The scalar version's steps (its `Local::from_frame`, `solid_angle`, `from_frame`
 /// and `sample`), each over all lanes.
 #[inline(always)]
 fn kernel(lane: &[RectangleLane; LANES]) -> [Option<(Vec3, f32)>; LANES] {
-    let fx = v3(|l| lane[l].frame.x);
-    let fy = v3(|l| lane[l].frame.y);
-    let fz = v3(|l| lane[l].frame.z);
+    let fx = v3(|l| lane[l].frame.x.to_array());
+    let fy = v3(|l| lane[l].frame.y.to_array());
+    let fz = v3(|l| lane[l].frame.z.to_array());
     // The rectangle's frame seen from p (Local::from_frame).
-    let d = v3(|l| lane[l].corner.as_dvec3() - lane[l].p.as_dvec3());
+    let d = v3(|l| (lane[l].corner.as_dvec3() - lane[l].p.as_dvec3()).to_array());
     let z_signed = dot(&d, &fz);
     let flip = z_signed.gt(F::splat(0.0));
     let z0 = F::select(flip, -z_signed, z_signed);
