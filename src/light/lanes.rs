@@ -103,39 +103,52 @@ impl LightLanes {
         used: usize,
         mut put: impl FnMut(usize, Option<LightSample>),
     ) {
+        let batch = Batch {
+            lights,
+            strategy,
+            jobs,
+            used,
+        };
         if !self.spheres {
-            return self.rectangles(lights, strategy, jobs, used, &mut put, |_| true);
+            return batch.rectangles(&self.lanes, &mut put, |_| true);
         }
         let is_sphere = |l: usize| matches!(self.lanes[jobs[l].0], Some(Lanes::Sphere));
         let of_spheres = (0..used).filter(|&l| is_sphere(l)).count();
         if of_spheres < used {
-            self.rectangles(lights, strategy, jobs, used, &mut put, |l| !is_sphere(l));
+            batch.rectangles(&self.lanes, &mut put, |l| !is_sphere(l));
         }
         if of_spheres > 0 {
-            spheres(lights, strategy, jobs, used, &mut put, is_sphere);
+            batch.spheres(&mut put, is_sphere);
         }
     }
+}
 
-    /// [`LightLanes::sample`] for the jobs `l < used` that `mine(l)` (all rectangles;
-    /// the other lanes repeat the first of them).
+/// The jobs of one [`LightLanes::sample`] call, the first `used` of them real.
+struct Batch<'a, 'j> {
+    lights: &'a [Light],
+    strategy: LightStrategy,
+    jobs: &'a [LaneJob<'j>; LANES],
+    used: usize,
+}
+
+impl Batch<'_, '_> {
+    /// The samples of the jobs `l < used` that `mine(l)` (all rectangles, with their
+    /// `lanes`; the kernel's other lanes repeat the first of them).
     #[inline(always)]
     fn rectangles(
         &self,
-        lights: &[Light],
-        strategy: LightStrategy,
-        jobs: &[LaneJob; LANES],
-        used: usize,
+        lanes: &[Option<Lanes>],
         put: &mut impl FnMut(usize, Option<LightSample>),
         mine: impl Fn(usize) -> bool,
     ) {
-        let rectangle = |i: usize| match &area(lights, i).shape {
+        let rectangle = |i: usize| match &self.area(i).shape {
             Shape::Rectangle(r) => r,
             _ => unreachable!("light {i} has no rectangle lanes"),
         };
-        let pick = filled(used, &mine);
+        let pick = self.filled(&mine);
         let lane: [RectangleLane; LANES] = std::array::from_fn(|l| {
-            let (i, at, u) = jobs[pick(l)];
-            let Some(Lanes::Rectangle(frame)) = &self.lanes[i] else {
+            let (i, at, u) = self.jobs[pick(l)];
+            let Some(Lanes::Rectangle(frame)) = &lanes[i] else {
                 unreachable!("light {i} has no rectangle lanes")
             };
             RectangleLane {
@@ -154,83 +167,74 @@ impl LightLanes {
                 pdf,
             })
         };
-        put_samples(lights, strategy, jobs, used, put, &mine, point);
+        self.put_samples(put, &mine, point);
     }
-}
 
-/// [`LightLanes::sample`] for the jobs `l < used` that `mine(l)` (all spheres; the
-/// other lanes repeat the first of them).
-#[inline(always)]
-fn spheres(
-    lights: &[Light],
-    strategy: LightStrategy,
-    jobs: &[LaneJob; LANES],
-    used: usize,
-    put: &mut impl FnMut(usize, Option<LightSample>),
-    mine: impl Fn(usize) -> bool,
-) {
-    let pick = filled(used, &mine);
-    let lane: [SphereLane; LANES] = std::array::from_fn(|l| {
-        let (i, at, u) = jobs[pick(l)];
-        let Shape::Sphere(sphere) = area(lights, i).shape else {
-            unreachable!("light {i} has no sphere lanes")
-        };
-        SphereLane { sphere, p: at.p, u }
-    });
-    let points = sphere_lanes::sample_lanes(&lane);
-    put_samples(lights, strategy, jobs, used, put, &mine, |l, _, _| {
-        points[l]
-    });
-}
-
-/// The area light `lights[i]` (one with lanes).
-#[inline(always)]
-fn area(lights: &[Light], i: usize) -> &AreaLight {
-    match &lights[i] {
-        Light::Area(a) => a,
-        _ => unreachable!("light {i} has no lanes version"),
+    /// The samples of the jobs `l < used` that `mine(l)` (all spheres; the kernel's
+    /// other lanes repeat the first of them).
+    #[inline(always)]
+    fn spheres(
+        &self,
+        put: &mut impl FnMut(usize, Option<LightSample>),
+        mine: impl Fn(usize) -> bool,
+    ) {
+        let pick = self.filled(&mine);
+        let lane: [SphereLane; LANES] = std::array::from_fn(|l| {
+            let (i, at, u) = self.jobs[pick(l)];
+            let Shape::Sphere(sphere) = self.area(i).shape else {
+                unreachable!("light {i} has no sphere lanes")
+            };
+            SphereLane { sphere, p: at.p, u }
+        });
+        let points = sphere_lanes::sample_lanes(&lane);
+        self.put_samples(put, &mine, |l, _, _| points[l]);
     }
-}
 
-/// The lane whose job lane `l` takes: its own when it is one of the first `used` and
-/// `mine`, else the first such (a kernel's other lanes only fill it).
-#[inline(always)]
-fn filled(used: usize, mine: &impl Fn(usize) -> bool) -> impl Fn(usize) -> usize + '_ {
-    let first = (0..used).find(|&l| mine(l)).expect("a job for the kernel");
-    move |l| if l < used && mine(l) { l } else { first }
-}
-
-/// Hands on the samples of the jobs `l < used` that `mine(l)`, from the kernel's
-/// `point(l, i, at)` of lane `l` (light `i`, shading point `at`): each as
-/// `AreaLight::sample_with` makes it from its shape's point, and where the kernel has
-/// none (a spherical rectangle too small or seen edge-on, a shading point inside a
-/// sphere) the scalar sample, which takes the area there. (The points are made one at
-/// a time, as they are handed on: gathered in an array first, they cost the
-/// rectangles' stage 8 % more instructions.)
-#[inline(always)]
-fn put_samples(
-    lights: &[Light],
-    strategy: LightStrategy,
-    jobs: &[LaneJob; LANES],
-    used: usize,
-    put: &mut impl FnMut(usize, Option<LightSample>),
-    mine: &impl Fn(usize) -> bool,
-    point: impl Fn(usize, usize, &ShadingPoint) -> Option<LightPoint>,
-) {
-    for (l, &(i, at, u)) in jobs.iter().enumerate().take(used) {
-        if !mine(l) {
-            continue;
+    /// The area light `lights[i]` (one with lanes).
+    #[inline(always)]
+    fn area(&self, i: usize) -> &AreaLight {
+        match &self.lights[i] {
+            Light::Area(a) => a,
+            _ => unreachable!("light {i} has no lanes version"),
         }
-        match point(l, i, at) {
-            Some(point) => {
-                let (light, y) = (area(lights, i), point.y);
-                let emitted = |ny, w| light.emitted(y, ny, w);
-                put(
-                    l,
-                    light_sample(at, point, strategy.horizon_rejection, emitted),
-                );
+    }
+
+    /// The lane whose job lane `l` takes: its own when it is one of the first `used`
+    /// and `mine`, else the first such (a kernel's other lanes only fill it).
+    #[inline(always)]
+    fn filled<'m>(&self, mine: &'m impl Fn(usize) -> bool) -> impl Fn(usize) -> usize + 'm {
+        let used = self.used;
+        let first = (0..used).find(|&l| mine(l)).expect("a job for the kernel");
+        move |l| if l < used && mine(l) { l } else { first }
+    }
+
+    /// Hands on the samples of the jobs `l < used` that `mine(l)`, from the kernel's
+    /// `point(l, i, at)` of lane `l` (light `i`, shading point `at`): each as
+    /// `AreaLight::sample_with` makes it from its shape's point, and where the kernel
+    /// has none (a spherical rectangle too small or seen edge-on, a shading point inside
+    /// a sphere) the scalar sample, which takes the area there. (The points are made one
+    /// at a time, as they are handed on: gathered in an array first, they cost the
+    /// rectangles' stage 8 % more instructions.)
+    #[inline(always)]
+    fn put_samples(
+        &self,
+        put: &mut impl FnMut(usize, Option<LightSample>),
+        mine: &impl Fn(usize) -> bool,
+        point: impl Fn(usize, usize, &ShadingPoint) -> Option<LightPoint>,
+    ) {
+        for (l, &(i, at, u)) in self.jobs.iter().enumerate().take(self.used) {
+            if !mine(l) {
+                continue;
             }
-            None => put(l, lights[i].sample(at, u, strategy)),
+            match point(l, i, at) {
+                Some(point) => {
+                    let (light, y) = (self.area(i), point.y);
+                    let emitted = |ny, w| light.emitted(y, ny, w);
+                    let reject = self.strategy.horizon_rejection;
+                    put(l, light_sample(at, point, reject, emitted));
+                }
+                None => put(l, self.lights[i].sample(at, u, self.strategy)),
+            }
         }
     }
 }
