@@ -90,10 +90,11 @@ impl LightLanes {
     /// `lights[i].sample(at, u, strategy)` for each of the first `used` jobs `(i, at, u)`,
     /// handed to `put(l, sample)` with the job's lane `l` so that the caller stores it
     /// where it is wanted (returned as an array, each 60-byte sample was copied twice more
-    /// on its way); the other jobs only fill the lanes. Every light `i` is one that
-    /// [`LightLanes::has`]; `lights` and `strategy` must be the ones the lanes were made
-    /// with. Jobs of rectangles and of spheres go through their own kernels (each kernel
-    /// runs only when some job is of its kind).
+    /// on its way); the other jobs only fill the lanes (`used` ≤ [`LANES`]; none when
+    /// `used` is 0). Every light `i` is one that [`LightLanes::has`]; `lights` and
+    /// `strategy` must be the ones the lanes were made with. Jobs of rectangles and of
+    /// spheres go through their own kernels (each kernel runs only when some job is of
+    /// its kind), so a caller that batches by [`LightLanes::kernel`] fills every lane.
     #[inline(always)]
     pub fn sample(
         &self,
@@ -103,6 +104,11 @@ impl LightLanes {
         used: usize,
         mut put: impl FnMut(usize, Option<LightSample>),
     ) {
+        debug_assert!(used <= LANES, "{used} jobs for {LANES} lanes");
+        let used = used.min(LANES);
+        if used == 0 {
+            return;
+        }
         let batch = Batch {
             lights,
             strategy,
@@ -326,6 +332,7 @@ mod tests {
                 let wide = drawn(LANES);
                 // Fewer jobs than lanes: only the first are handed on, the same.
                 let some = drawn(2);
+                drawn(0); // no job: no call
                 for (l, got) in wide.iter().enumerate() {
                     let (i, at, u) = jobs[l];
                     let scalar = scene.lights[i].sample(at, u, strategy);

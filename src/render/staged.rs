@@ -1,5 +1,6 @@
 //! A chunk of camera samples shaded in stages, so that their light samples can be drawn
-//! [`LANES`] shading points at a time ([`LightLanes`]: rectangles under `solid-angle`).
+//! [`LANES`] shading points at a time ([`LightLanes`]: rectangles and spheres under
+//! `solid-angle`).
 //!
 //! Where the estimator runs in stages ([`Estimator::stages`]: `mis` with the balance or
 //! power heuristic and one light sample, and `light`), the camera packets shade a chunk
@@ -110,8 +111,9 @@ impl Stages {
 }
 
 /// The light samples of the staged estimates `begun[k]`, for `k` in `batch` (1 to
-/// [`LANES`] of them, all of lights with lanes), into `samples[k]`; a short batch fills
-/// its other lanes with its last job and drops their samples.
+/// [`LANES`] of them, all of lights with lanes of one kernel), into `samples[k]`; a short
+/// batch fills its other lanes (with its last job here, with the kernel's first job in
+/// [`LightLanes::sample`]) and drops their samples.
 fn sample_batch(
     scene: &Scene,
     estimator: &Estimator,

@@ -149,12 +149,15 @@ mod tests {
     /// Every lane gives the scalar `solid-angle` sample's point, normal and density bit
     /// for bit, and `None` exactly where the shading point is inside or on the sphere
     /// (where the scalar version samples the area), through both the dispatched and the
-    /// baseline kernel, with a different sphere in every lane: far, near, grazing the
-    /// surface and inside.
+    /// baseline kernel, with a different sphere in every lane: far and near (0.5 to 20
+    /// radii from the centre), inside (lane 7), within a few units in the last place of
+    /// the view's threshold r/D = 1 − 10⁻⁵ on either side (lane 6), and sampled at the
+    /// cone's rim, u₀ = 1 − ε/2, where the hit is clamped to the silhouette (lane 5).
     #[test]
     fn every_lane_is_the_scalar_sample_bit_for_bit() {
         let mut rng = Rng32::new(5);
-        let (mut outside, mut inside) = (0, 0);
+        // Lanes outside and inside as the view decides, and lane 6 on each side.
+        let (mut outside, mut inside, mut near_out, mut near_in) = (0, 0, 0, 0);
         for _ in 0..2000 {
             let mut next = || rng.next_1d();
             let lane: [SphereLane; LANES] = std::array::from_fn(|l| {
@@ -162,17 +165,26 @@ mod tests {
                 let radius = 0.01 + next() * next();
                 // From 0.5 to 20 radii away from the centre, every eighth lane inside.
                 let dir = (Vec3::new(next(), next(), next()) - 0.5).normalize_or(Vec3::Z);
-                let distance = radius * if l == 7 { next() } else { 0.5 + 19.5 * next() };
+                let distance = match l {
+                    7 => radius * next(),
+                    6 => {
+                        let threshold = radius / (1.0 - 1e-5);
+                        let ulps = (next() * 9.0) as u32;
+                        f32::from_bits(threshold.to_bits() + ulps - 4)
+                    }
+                    _ => radius * (0.5 + 19.5 * next()),
+                };
                 let sphere = Sphere {
                     center,
                     radius,
                     axes: Frame::from_normal(Vec3::Z),
                 };
                 let p = center + dir * distance;
+                let u0 = if l == 5 { ONE_MINUS_EPSILON } else { next() };
                 SphereLane {
                     sphere,
                     p,
-                    u: Vec2::new(next(), next()),
+                    u: Vec2::new(u0, next()),
                 }
             });
             let bits = |x: &Option<LightPoint>| {
@@ -195,17 +207,22 @@ mod tests {
                 let scalar = super::super::sphere::sample(s, LightSampling::SolidAngle, &at, job.u);
                 // Outside as the scalar version's view decides it.
                 let ratio = s.radius / (job.p - s.center).length();
-                let expected = if ratio < 1.0 - 1e-5 && ratio.is_finite() {
+                let seen = ratio < 1.0 - 1e-5 && ratio.is_finite();
+                let expected = if seen {
                     outside += 1;
                     bits(&scalar)
                 } else {
                     inside += 1;
                     None
                 };
+                if l == 6 {
+                    (near_out, near_in) = (near_out + seen as u32, near_in + !seen as u32);
+                }
                 assert_eq!(bits(&wide[l]), expected, "lane {l}: {job:?}");
                 assert_eq!(bits(&baseline[l]), bits(&wide[l]), "lane {l}");
             }
         }
         assert!(outside > 10_000 && inside > 1000, "{outside} / {inside}");
+        assert!(near_out > 300 && near_in > 300, "{near_out} / {near_in}");
     }
 }

@@ -65,12 +65,14 @@ fn packets_give_the_samples_of_single_rays() {
         ("tests/scenes/tent_point.xml", "light", 0.85),
         ("tests/scenes/microfacet_conductor.xml", "own", 0.75),
         ("tests/scenes/gaussian_stratified.xml", "own", 0.5),
+        ("tests/scenes/gaussian_stratified.xml", "light", 0.5),
         ("builtin:shirley-100", "own", 0.6),
     ] {
         let optimal_mis = which == "optimal";
         let scene = load(spec).expect("scene");
-        // mesh_obj, veach-mis and shirley-100 (whose batches of light samples mix
-        // rectangles and spheres) trace packets; the others one ray at a time: some
+        // mesh_obj, veach-mis and shirley-100 (rectangle and sphere lights, whose light
+        // samples go to their two kernels in batches of their own) trace packets; the
+        // others one ray at a time: some
         // have a BVH of one node, others (assignment, materials, microfacet_conductor,
         // gaussian_stratified) are few enough shapes to be tested without a tree.
         let packets = ["mesh_obj.xml", "veach", "shirley"]
