@@ -72,9 +72,9 @@ fn packets_give_the_samples_of_single_rays() {
         let scene = load(spec).expect("scene");
         // mesh_obj, veach-mis and shirley-100 (rectangle and sphere lights, whose light
         // samples go to their two kernels in batches of their own) trace packets; the
-        // others one ray at a time: some
-        // have a BVH of one node, others (assignment, materials, microfacet_conductor,
-        // gaussian_stratified) are few enough shapes to be tested without a tree.
+        // others one ray at a time: some have a BVH of one node, others (assignment,
+        // materials, microfacet_conductor, gaussian_stratified) are few enough shapes
+        // to be tested without a tree.
         let packets = ["mesh_obj.xml", "veach", "shirley"]
             .iter()
             .any(|name| spec.contains(name));
