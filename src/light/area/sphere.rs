@@ -54,6 +54,12 @@ impl View {
     fn sees(&self, ny: Vec3) -> bool {
         ny.dot(self.b) >= self.ratio - CAP_SLACK
     }
+
+    /// The `solid-angle` density of a point on the visible cap: the cone's constant
+    /// 1/(2π(1 − cos θmax)), as the warp computes it.
+    fn cone_pdf(&self) -> f32 {
+        uniform_cone_pdf(Vec3::Z, 1.0 - self.one_minus_cos_max())
+    }
 }
 
 /// A uniform point on the whole sphere and its outward normal.
@@ -120,14 +126,9 @@ pub(super) fn sample(
             let (local, _) = square_to_uniform_cone(u, cos_max);
             let w = Frame::from_normal(-view.b).to_world(local);
             let (y, ny) = cone_hit(s, at.p, w);
-            // `pdf`'s value for this point from the view already at hand (the same
-            // formula on the same numbers: `pdf` would find the view again, a chain of
-            // two square roots and three divisions).
-            let pdf = if view.sees(ny) {
-                uniform_cone_pdf(Vec3::Z, cos_max)
-            } else {
-                0.0
-            };
+            // `pdf`'s value for this point from the view already at hand (`pdf` would
+            // find the view again, a chain of two square roots and three divisions).
+            let pdf = if view.sees(ny) { view.cone_pdf() } else { 0.0 };
             return Some(LightPoint { y, ny, pdf });
         }
     };
@@ -160,8 +161,7 @@ pub(super) fn pdf(
             Some(cone) => cone.pdf((y - at.p).normalize_or_zero()),
             None => 0.0,
         },
-        // The cone's constant density 1/(2π(1 − cos θmax)), as the warp computes it.
-        _ => uniform_cone_pdf(Vec3::Z, 1.0 - view.one_minus_cos_max()),
+        _ => view.cone_pdf(),
     }
 }
 
