@@ -1,10 +1,12 @@
-//! The `mis` and `light` estimates in stages, so that a renderer can sample the lights of many
-//! shading points together ([`crate::light::LightLanes`]): [`Estimator::begin`] turns the
-//! camera ray's hit to the side it is seen from and draws the light sample's numbers and
-//! light, the caller samples
-//! that light at [`Staged::at`] with [`Staged::u_point`], and [`Estimator::finish`] scores
-//! the light sample and (for `mis`) draws the BSDF samples. Every number is drawn in the order
-//! [`Estimator::radiance_from`] draws it, so the estimate is the same bit for bit.
+//! The `mis` and `light` estimates in stages, so that a renderer can choose and sample
+//! the lights of many shading points together ([`crate::light::LightLanes`]):
+//! [`Estimator::begin`] turns the camera ray's hit to the side it is seen from and draws
+//! the light sample's numbers; the caller chooses the light with [`Staged::u_select`]
+//! (for many points together: [`crate::light::select::Selector::select_lanes`]), hands
+//! it to [`Staged::choose`] and samples it at [`Staged::at`] with [`Staged::u_point`];
+//! [`Estimator::finish`] scores the light sample and (for `mis`) draws the BSDF samples.
+//! Every number is drawn in the order [`Estimator::radiance_from`] draws it, so the
+//! estimate is the same bit for bit.
 //!
 //! Stages apply to the balance and power heuristics with one light sample (the default
 //! and Mitsuba's `direct`) and to the `light` estimator (its one light sample drawn
@@ -40,13 +42,28 @@ pub struct Staged {
     emitted: Spectrum,
     at: ShadingPoint,
     draw: LightDraw,
+    u_select: f32,
 }
 
 impl Staged {
-    /// The light to sample and its selection probability (`None`: no light).
+    /// The light to sample and its selection probability (`None`: no light, or none
+    /// chosen yet).
     #[inline]
     pub fn light(&self) -> Option<Selection> {
         self.draw.selection
+    }
+
+    /// The number that chooses the light.
+    #[inline]
+    pub fn u_select(&self) -> f32 {
+        self.u_select
+    }
+
+    /// Records the light chosen at [`Staged::at`] with [`Staged::u_select`] by the
+    /// estimator's selector (`None`: no light can contribute).
+    #[inline]
+    pub fn choose(&mut self, selection: Option<Selection>) {
+        self.draw.selection = selection;
     }
 
     /// The shading point to sample the light at.
@@ -81,7 +98,8 @@ impl Estimator {
     }
 
     /// The first stage of [`Estimator::radiance_from`] along camera ray `ray` with
-    /// closest hit `hit` (see the module doc); only when [`Estimator::stages`].
+    /// closest hit `hit` (see the module doc), which leaves the light to be chosen;
+    /// only when [`Estimator::stages`].
     #[inline(always)]
     pub fn begin(
         &self,
@@ -100,13 +118,24 @@ impl Estimator {
             return Begun::Done(emitted + Spectrum::ZERO);
         };
         let at = shading_point(&hit);
-        let draw = mis::draw_light(&self.selector, &at, src);
-        Begun::Light(Staged { emitted, at, draw })
+        // The numbers `mis::draw_light` draws; the light is chosen later.
+        let (u_select, u_point) = mis::light_numbers(src);
+        let draw = LightDraw {
+            selection: None,
+            u_point,
+        };
+        Begun::Light(Staged {
+            emitted,
+            at,
+            draw,
+            u_select,
+        })
     }
 
     /// The last stage, for the same `ray` and `hit` as [`Estimator::begin`], given the
-    /// sample `ls` of `staged`'s light at its shading point (`scene.lights[i].sample(
-    /// staged.at(), staged.u_point(), self.lights)`, or `None` without a light), drawing
+    /// light chosen ([`Staged::choose`]) and the sample `ls` of `staged`'s light at its
+    /// shading point (`scene.lights[i].sample(staged.at(), staged.u_point(),
+    /// self.lights)`, or `None` without a light), drawing
     /// on from `src` where [`Estimator::begin`] left it. Always inlined (called, it
     /// returned the estimate through memory).
     #[inline(always)]

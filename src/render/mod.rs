@@ -182,8 +182,8 @@ pub fn render_carrying(
             .collect();
     }
     let optimal: &[Mutex<OptimalPixel>] = if optimal_mis { &carry.optimal } else { &[] };
-    // Light samples drawn `LANES` shading points at a time where the lights allow it.
-    let lanes = staged::light_lanes(scene, &estimator);
+    // Lights chosen and sampled `LANES` shading points at a time where that pays.
+    let staging = staged::Staging::new(scene, &estimator);
     // Blocks of pixels whose camera rays all miss the scene skip the traversal, and
     // without an environment the whole sample but its film position (not under
     // `--ris-spatial`, whose rounds trace their own camera rays).
@@ -197,7 +197,7 @@ pub fn render_carrying(
             estimator: &estimator,
             optimal,
             invalid: &invalid,
-            lanes: lanes.as_ref(),
+            staging: staging.as_ref(),
             cull: cull.as_ref(),
             positions: !settings.filter.is_pixel_box(),
         };

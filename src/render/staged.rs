@@ -1,31 +1,56 @@
-//! A chunk of camera samples shaded in stages, so that their light samples can be drawn
-//! [`LANES`] shading points at a time ([`LightLanes`]: rectangles and spheres under
-//! `solid-angle`).
+//! A chunk of camera samples shaded in stages, so that their lights can be chosen and
+//! sampled [`LANES`] shading points at a time: the light tree's walks interleaved
+//! ([`Selector::select_lanes`]), the light samples of rectangles and spheres under
+//! `solid-angle` in SIMD lanes ([`LightLanes`]).
 //!
 //! Where the estimator runs in stages ([`Estimator::stages`]: `mis` with the balance or
 //! power heuristic and one light sample, and `light`), the camera packets shade a chunk
-//! in three passes: every sample's hit and light choice ([`Estimator::begin`]), the
-//! light samples (those of lights with lanes [`LANES`] at a time), every sample's score
-//! and BSDF samples ([`Estimator::finish`]). The estimates are the one-at-a-time ones
-//! bit for bit; only the light sampling's work is shared.
+//! in up to four passes: every sample's hit and numbers ([`Estimator::begin`]), the
+//! light choices ([`LANES`] at a time where the light tree's walks go together, else
+//! made in the first pass), the light samples (those of lights with lanes [`LANES`] at a
+//! time), every sample's score and BSDF samples ([`Estimator::finish`]).
+//! The estimates are the one-at-a-time ones bit for bit; only the choosing and the light
+//! sampling's work is shared.
 
 use glam::Vec2;
 
 use super::packets::{CameraPackets, Pending};
 use crate::geometry::SurfaceHit;
 use crate::integrator::{Begun, Estimator};
-use crate::light::{KERNELS, LaneJob, LightLanes, LightSample};
+use crate::light::select::{LightSelector, Selector};
+use crate::light::{KERNELS, LaneJob, LightLanes, LightSample, ShadingPoint};
 use crate::math::Spectrum;
 use crate::sampling::warp::LANES;
 use crate::scene::Scene;
 
-/// The light lanes of a render with `estimator` on `scene`: `None` unless the estimate
-/// runs in stages and some light has lanes.
-pub(super) fn light_lanes(scene: &Scene, estimator: &Estimator) -> Option<LightLanes> {
-    if estimator.stages() {
-        LightLanes::new(&scene.lights, estimator.lights)
-    } else {
-        None
+/// What a render shades in stages for: the light lanes, or light choices that go
+/// together ([`Selector::walks_together`]), or both.
+pub(super) struct Staging {
+    /// The lights sampled [`LANES`] shading points at a time (`None`: every light sample
+    /// one at a time).
+    lanes: Option<LightLanes>,
+    /// Whether the lights are chosen [`LANES`] shading points at a time (else each as
+    /// its estimate begins).
+    walks: bool,
+}
+
+impl Staging {
+    /// The staging of a render with `estimator` on `scene`: `None` unless the estimate
+    /// runs in stages and some light has lanes or the light tree's walks go together
+    /// (neither under `--fast-paths off`).
+    pub(super) fn new(scene: &Scene, estimator: &Estimator) -> Option<Staging> {
+        if !estimator.stages() {
+            return None;
+        }
+        let lanes = LightLanes::new(&scene.lights, estimator.lights);
+        let walks = estimator.lights.fast_paths && estimator.selector.walks_together();
+        (lanes.is_some() || walks).then_some(Staging { lanes, walks })
+    }
+
+    /// Whether some light's samples are drawn in lanes.
+    #[cfg(test)]
+    pub(super) fn has_lanes(&self) -> bool {
+        self.lanes.is_some()
     }
 }
 
@@ -44,7 +69,7 @@ impl Stages {
     pub(super) fn shade(
         &mut self,
         job: &CameraPackets<'_>,
-        lanes: &LightLanes,
+        staging: &Staging,
         traced: &mut [(Pending, Option<SurfaceHit>)],
         n: usize,
         sink: &mut impl FnMut(u32, u32, Vec2, Spectrum),
@@ -53,12 +78,22 @@ impl Stages {
         let len = traced.len();
         let order = (0..n).flat_map(move |lane| (lane..len).step_by(n));
         self.begun.clear();
+        let selector = &estimator.selector;
         for i in order.clone() {
             let (p, hit) = &mut traced[i];
-            let begun = estimator.begin(scene, &p.ray, hit.as_ref(), &mut p.sampler);
+            let mut begun = estimator.begin(scene, &p.ray, hit.as_ref(), &mut p.sampler);
+            if let (Begun::Light(staged), false) = (&mut begun, staging.walks) {
+                staged.choose(selector.select(staged.at(), staged.u_select()));
+            }
             self.begun.push(begun);
         }
-        self.sample_lights(scene, estimator, lanes);
+        if staging.walks {
+            self.choose_lights(selector);
+        }
+        match &staging.lanes {
+            Some(lanes) => self.sample_lights(scene, estimator, lanes),
+            None => self.sample_lights_alone(scene, estimator),
+        }
         for (k, i) in order.enumerate() {
             let (p, hit) = &mut traced[i];
             // Each arm hands its estimate on itself: merged into one value first, the
@@ -74,6 +109,38 @@ impl Stages {
                 (Begun::Light(_), None) => unreachable!("a staged estimate has a hit"),
             }
         }
+    }
+
+    /// The light of every staged estimate, chosen [`LANES`] at a time.
+    fn choose_lights(&mut self, selector: &Selector) {
+        let begun = &mut self.begun;
+        let mut batch = [0usize; LANES];
+        let mut waiting = 0;
+        for k in 0..begun.len() {
+            if let Begun::Light(_) = begun[k] {
+                batch[waiting] = k;
+                waiting += 1;
+                if waiting == LANES {
+                    choose_batch(selector, begun, &batch);
+                    waiting = 0;
+                }
+            }
+        }
+        if waiting > 0 {
+            choose_batch(selector, begun, &batch[..waiting]);
+        }
+    }
+
+    /// The light sample of every staged estimate, one at a time.
+    fn sample_lights_alone(&mut self, scene: &Scene, estimator: &Estimator) {
+        let Stages { begun, samples } = self;
+        samples.clear();
+        samples.extend(begun.iter().map(|staged| match staged {
+            Begun::Light(staged) => staged.light().and_then(|sel| {
+                scene.lights[sel.index].sample(staged.at(), staged.u_point(), estimator.lights)
+            }),
+            Begun::Done(_) => None,
+        }));
     }
 
     /// The light sample of every staged estimate: those of lights with lanes
@@ -106,6 +173,26 @@ impl Stages {
             if waiting > 0 {
                 sample_batch(scene, estimator, lanes, begun, &batch[..waiting], samples);
             }
+        }
+    }
+}
+
+/// The lights of the staged estimates `begun[k]`, for `k` in `batch` (1 to [`LANES`] of
+/// them, all staged), chosen together.
+fn choose_batch(selector: &Selector, begun: &mut [Begun], batch: &[usize]) {
+    let mut chosen = [None; LANES];
+    let chosen = &mut chosen[..batch.len()];
+    {
+        let jobs: [(&ShadingPoint, f32); LANES] =
+            std::array::from_fn(|l| match &begun[batch[l.min(batch.len() - 1)]] {
+                Begun::Light(staged) => (staged.at(), staged.u_select()),
+                Begun::Done(_) => unreachable!("only staged estimates choose lights"),
+            });
+        selector.select_lanes(&jobs[..batch.len()], chosen);
+    }
+    for (&k, &selection) in batch.iter().zip(chosen.iter()) {
+        if let Begun::Light(staged) = &mut begun[k] {
+            staged.choose(selection);
         }
     }
 }

@@ -162,6 +162,15 @@ pub(super) struct LightDraw {
     pub u_point: Vec2,
 }
 
+/// The numbers of one light sample, in the order every estimate draws them: the one
+/// that chooses the light, then the two that place the point on it.
+#[inline(always)]
+pub(super) fn light_numbers(src: &mut impl Uniform) -> (f32, Vec2) {
+    let u_select = src.next_1d();
+    let u_point = src.next_2d();
+    (u_select, u_point)
+}
+
 /// Draws the numbers of one light sample and chooses its light at `at` (which needs
 /// the shading point alone, not its material).
 #[inline(always)]
@@ -170,8 +179,7 @@ pub(super) fn draw_light(
     at: &ShadingPoint,
     src: &mut impl Uniform,
 ) -> LightDraw {
-    let u_select = src.next_1d();
-    let u_point = src.next_2d();
+    let (u_select, u_point) = light_numbers(src);
     LightDraw {
         selection: selector.select(at, u_select),
         u_point,

@@ -121,6 +121,29 @@ impl Selector {
     }
 }
 
+impl Selector {
+    /// Whether [`Selector::select_lanes`] does more than choose one light after another:
+    /// for a light tree of more than one light, whose walks it interleaves.
+    pub fn walks_together(&self) -> bool {
+        matches!(self, Selector::Bvh(b) if b.node_count() > 0)
+    }
+
+    /// [`LightSelector::select`] for each `(point, u)` of `jobs` (at most
+    /// [`LANES`](crate::sampling::warp::LANES)), into the same place of `out`: the light
+    /// tree's walks together ([`BvhSelector::select_lanes`]), the others' choices one by
+    /// one. The same selections as one at a time, bit for bit.
+    pub fn select_lanes(&self, jobs: &[(&ShadingPoint, f32)], out: &mut [Option<Selection>]) {
+        match self {
+            Selector::Bvh(b) => b.select_lanes(jobs, out),
+            _ => {
+                for (o, &(at, u)) in out.iter_mut().zip(jobs) {
+                    *o = self.select(at, u);
+                }
+            }
+        }
+    }
+}
+
 /// Which of `lights` draw no samples under `strategy` ([`Light::draws_no_samples`]), or
 /// `None` when none does, or when all do (they then keep their turns: their samples are
 /// empty anyway, and a selector over no light would leave the light technique with no

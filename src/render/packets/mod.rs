@@ -27,10 +27,11 @@
 //! bring no light at all: no camera ray is made, and the film position is drawn only
 //! for a filter that uses it.
 //!
-//! Where the estimator runs in stages and some light has lanes, a chunk is shaded in
-//! stages instead (see [`super::staged`]); on a tree of one node, or in a scene tested
-//! without a tree ([`Geometry::is_flat`](crate::geometry::Geometry::is_flat)), its camera
-//! rays are then traced one at a time.
+//! Where the estimator runs in stages and some light has lanes or the light tree's walks
+//! go together, a chunk is shaded in stages instead (see [`super::staged`]); on a tree
+//! of one node, or in a scene tested without a tree
+//! ([`Geometry::is_flat`](crate::geometry::Geometry::is_flat)), its camera rays are then
+//! traced one at a time.
 
 mod ahead;
 mod order;
@@ -43,12 +44,11 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use glam::Vec2;
 
 use super::frustum::FrustumCull;
-use super::staged::Stages;
+use super::staged::{Stages, Staging};
 use super::{RenderSettings, Tile};
 use crate::geometry::bvh::PACKET;
 use crate::geometry::{Ray, SurfaceHit};
 use crate::integrator::{Estimator, OptimalPixel};
-use crate::light::LightLanes;
 use crate::math::Spectrum;
 use crate::sampling::sobol::CHUNK_LANES;
 use crate::sampling::{Sampler, SamplerKind, Uniform};
@@ -104,10 +104,10 @@ pub(super) struct CameraPackets<'a> {
     pub optimal: &'a [Mutex<OptimalPixel>],
     /// Samples whose radiance was not finite.
     pub invalid: &'a AtomicU64,
-    /// The lights sampled [`LANES`] shading points at a time, when the estimator
-    /// [`stages`](Estimator::stages) and some light has lanes; else every estimate runs
-    /// whole, one at a time.
-    pub lanes: Option<&'a LightLanes>,
+    /// What the estimates are shaded in stages for ([`Staging`]), when the estimator
+    /// [`stages`](Estimator::stages) and they pay; else every estimate runs whole, one
+    /// at a time.
+    pub staging: Option<&'a Staging>,
     /// Where on the film the camera may see the scene (its top BVH boxes): the camera
     /// rays of a block of pixels that sees none of it are not traced (`None`: every ray
     /// is traced).
@@ -169,13 +169,13 @@ impl CameraPackets<'_> {
         // nor in a scene tested without a tree, where a ray is one pass over the blocks.
         let geometry = &self.scene.geometry;
         let single_rays = geometry.bvh().depth() < MIN_PACKET_DEPTH || geometry.is_flat();
-        // Lanes come only with an estimate in stages (see `staged::light_lanes`).
+        // Staging comes only with an estimate in stages (see `Staging::new`).
         assert!(
-            self.lanes.is_none() || self.estimator.stages(),
-            "light lanes need an estimate in stages"
+            self.staging.is_none() || self.estimator.stages(),
+            "staging needs an estimate in stages"
         );
         let kind = (self.settings.sampler, self.settings.spp);
-        if single_rays && self.lanes.is_none() {
+        if single_rays && self.staging.is_none() {
             // `each_sample`'s order, with the block's culling decided once per chunk.
             sample_order(tile, samples, seed_width, kind, |chunk, block| {
                 let misses = self.misses(block);
@@ -235,8 +235,8 @@ impl CameraPackets<'_> {
                 }
             }
             let n = block.len();
-            if let Some(lanes) = self.lanes {
-                stages.shade(self, lanes, &mut traced, n, sink);
+            if let Some(staging) = self.staging {
+                stages.shade(self, staging, &mut traced, n, sink);
             } else {
                 for lane in 0..n {
                     for (p, hit) in traced[lane..].iter_mut().step_by(n) {

@@ -7,7 +7,7 @@ use super::*;
 use crate::geometry::Aabb;
 use crate::integrator::{EstimatorKind, MisHeuristic};
 use crate::render::frustum::{FrustumCull, TOP_BOXES};
-use crate::render::staged::light_lanes;
+use crate::render::staged::Staging;
 use crate::scene::load;
 
 /// Every sample of a tile as (x, y, film position bits, radiance bits).
@@ -48,8 +48,8 @@ fn set_up(
 /// scenes of rectangles, spheres and meshes, with a count of samples that is not a
 /// multiple of the packet and with optimal MIS's per-pixel state; and on scenes whose
 /// rays are traced one at a time (a BVH of one node, or a scene tested without a
-/// tree). Where the estimate runs
-/// in stages with light lanes (`mis` and `light`), with them and without.
+/// tree). Where the estimate runs in stages (`mis` and `light`: with light lanes, or
+/// with the light tree's walks together), in stages and whole.
 #[test]
 fn packets_give_the_samples_of_single_rays() {
     // (scene, estimator: the scene's own, optimal MIS or `light`, height of the tile's
@@ -67,15 +67,18 @@ fn packets_give_the_samples_of_single_rays() {
         ("tests/scenes/gaussian_stratified.xml", "own", 0.5),
         ("tests/scenes/gaussian_stratified.xml", "light", 0.5),
         ("builtin:shirley-100", "own", 0.6),
+        ("tests/scenes/mesh_ply_serialized.xml", "own", 0.5),
+        ("tests/scenes/mesh_ply_serialized.xml", "light", 0.5),
     ] {
         let optimal_mis = which == "optimal";
         let scene = load(spec).expect("scene");
-        // mesh_obj, veach-mis and shirley-100 (rectangle and sphere lights, whose light
-        // samples go to their two kernels in batches of their own) trace packets; the
-        // others one ray at a time: some have a BVH of one node, others (assignment,
-        // materials, microfacet_conductor, gaussian_stratified) are few enough shapes
-        // to be tested without a tree.
-        let packets = ["mesh_obj.xml", "veach", "shirley"]
+        // mesh_obj, veach-mis, shirley-100 (rectangle and sphere lights, whose light
+        // samples go to their two kernels in batches of their own) and
+        // mesh_ply_serialized (256 triangle lights, chosen with the light tree's walks
+        // together) trace packets; the others one ray at a time: some have a BVH of one
+        // node, others (assignment, materials, microfacet_conductor,
+        // gaussian_stratified) are few enough shapes to be tested without a tree.
+        let packets = ["mesh_obj.xml", "veach", "shirley", "mesh_ply"]
             .iter()
             .any(|name| spec.contains(name));
         let depth = scene.geometry.bvh().depth();
@@ -105,12 +108,13 @@ fn packets_give_the_samples_of_single_rays() {
                 (Vec::new(), Vec::new())
             };
             let invalid = AtomicU64::new(0);
-            // The estimates in stages with light samples in lanes where they apply (all
-            // but optimal MIS and the point lights), and whole.
-            let lanes = light_lanes(&scene, &estimator);
+            // The estimates in stages (all but optimal MIS), with light samples in lanes
+            // where they apply (not to point lights or triangles), and whole.
+            let staging = Staging::new(&scene, &estimator);
+            assert_eq!(staging.is_some(), !optimal_mis, "{spec}");
             assert_eq!(
-                lanes.is_some(),
-                !optimal_mis && !spec.contains("tent"),
+                staging.as_ref().is_some_and(Staging::has_lanes),
+                !optimal_mis && !spec.contains("tent") && !spec.contains("mesh_ply"),
                 "{spec}"
             );
             let packets = CameraPackets {
@@ -120,7 +124,7 @@ fn packets_give_the_samples_of_single_rays() {
                 estimator: &estimator,
                 optimal: &optimal_a,
                 invalid: &invalid,
-                lanes: lanes.as_ref(),
+                staging: staging.as_ref(),
                 cull: None,
                 positions: true,
             };
@@ -153,13 +157,13 @@ fn packets_give_the_samples_of_single_rays() {
                 assert_eq!(a.len(), 24 * n);
                 assert!(a.iter().any(|s| s.3 != [0; 3]), "{spec}: all black");
                 assert_eq!(a, b, "{spec} {which} {sampler:?} {samples:?}");
-                if lanes.is_some() {
+                if staging.is_some() {
                     let whole = CameraPackets {
-                        lanes: None,
+                        staging: None,
                         ..packets
                     };
                     let c = trace(&whole, tile, samples.clone(), key);
-                    assert_eq!(c, b, "{spec} {which} {sampler:?} without lanes");
+                    assert_eq!(c, b, "{spec} {which} {sampler:?} whole");
                 }
             }
         }
@@ -195,10 +199,10 @@ fn samples_do_not_depend_on_rounds_passes_or_tiles() {
     for sampler in SamplerKind::ALL {
         let (settings, camera, estimator) = set_up(&scene, &scenes_own, sampler);
         let invalid = AtomicU64::new(0);
-        let lanes = light_lanes(&scene, &estimator);
-        assert!(lanes.is_some());
+        let staging = Staging::new(&scene, &estimator);
+        assert!(staging.as_ref().is_some_and(Staging::has_lanes));
         // With the light lanes (the estimate in stages) and without.
-        for lanes in [lanes.as_ref(), None] {
+        for staging in [staging.as_ref(), None] {
             let packets = CameraPackets {
                 scene: &scene,
                 settings: &settings,
@@ -206,7 +210,7 @@ fn samples_do_not_depend_on_rounds_passes_or_tiles() {
                 estimator: &estimator,
                 optimal: &[],
                 invalid: &invalid,
-                lanes,
+                staging,
                 cull: None,
                 positions: true,
             };
@@ -282,15 +286,15 @@ fn culled_blocks_give_the_samples_of_single_rays() {
             );
             let nothing = FrustumCull::new(&camera, &[Aabb::EMPTY]).expect("an empty box");
             let invalid = AtomicU64::new(0);
-            let lanes = light_lanes(&scene, &estimator);
+            let staging = Staging::new(&scene, &estimator);
             let key = (settings.seed, w);
             // Samples 5..19: a partial chunk, a whole one and a partial one again.
             let samples = 5..19;
-            let mut runs = vec![lanes.as_ref()];
-            if lanes.is_some() {
+            let mut runs = vec![staging.as_ref()];
+            if staging.is_some() {
                 runs.push(None);
             }
-            for lanes in runs {
+            for staging in runs {
                 let packets = |cull, positions| CameraPackets {
                     scene: &scene,
                     settings: &settings,
@@ -298,7 +302,7 @@ fn culled_blocks_give_the_samples_of_single_rays() {
                     estimator: &estimator,
                     optimal: &[],
                     invalid: &invalid,
-                    lanes,
+                    staging,
                     cull: Some(cull),
                     positions,
                 };
@@ -309,7 +313,7 @@ fn culled_blocks_give_the_samples_of_single_rays() {
                 let expected = trace(&plain, (0, 0, w, h), samples.clone(), key);
                 assert_eq!(expected.len(), (w * h * 14) as usize);
                 let culled = trace(&packets(&cull, true), (0, 0, w, h), samples.clone(), key);
-                assert_eq!(culled, expected, "{spec}, lanes {}", lanes.is_some());
+                assert_eq!(culled, expected, "{spec}, staged {}", staging.is_some());
                 let all = trace(&packets(&nothing, true), (0, 0, w, h), samples.clone(), key);
                 assert_ne!(all, expected, "{spec}: the footprint is not asked");
                 // Without film positions (the one-pixel box filter) only they may differ,

@@ -11,13 +11,20 @@
 //! On `mesh_ply_serialized` (256 emitting triangles) the binary tree's descent was a third
 //! of the render; the 4-wide one descends half as many levels with one importance pass
 //! per level (BENCHMARKS.md, session 8).
+//!
+//! A renderer that shades in stages walks up to eight shading points' trees together,
+//! level by level ([`BvhSelector::select_lanes`], in `lanes`), two walks per AVX2
+//! importance pass where the processor has it; each step of a level is [`descend`]'s.
 
 mod build;
+mod descend;
+mod lanes;
 mod saoh;
 mod wide;
 
 use build::BuildLight;
-use wide::{LANES, NOT_IN_TREE, Slot, WideNode, collapse};
+use descend::{Search, Step, Walk, descend, usable_total};
+use wide::{NOT_IN_TREE, Slot, WideNode, collapse};
 
 use super::{LightSelector, PreparedBounds, Selection};
 use crate::light::{Light, LightBounds, ShadingPoint};
@@ -140,13 +147,6 @@ impl BvhSelector {
     }
 }
 
-/// The sum of a node's importances when some child can contribute (a usable number).
-#[inline]
-fn usable_total(importance: &[f32; LANES]) -> Option<f32> {
-    let total = (importance[0] + importance[1]) + (importance[2] + importance[3]);
-    (total > 0.0 && total.is_finite()).then_some(total)
-}
-
 impl BvhSelector {
     /// Probability of choosing one given light at infinity, and of entering the tree.
     #[inline]
@@ -156,46 +156,58 @@ impl BvhSelector {
         (1.0 / choices, tree as f32 / choices)
     }
 
+    /// `select`'s first choice, by `u`: a light at infinity (`Err`), or the tree, with
+    /// `u` rescaled to walk it (`Ok`); the tree's selection then has its probability
+    /// multiplied by [`BvhSelector::tree_share`].
+    #[inline(always)]
+    fn entry(&self, u: f32) -> Result<f32, Selection> {
+        if self.infinite.is_empty() {
+            return Ok(u);
+        }
+        let (p_one, p_tree) = self.split();
+        let u = u.clamp(0.0, ONE_MINUS_EPSILON);
+        let p_infinite = 1.0 - p_tree;
+        if u < p_infinite {
+            let x = u / p_one;
+            let k = (x as usize).min(self.infinite.len() - 1);
+            return Err(Selection {
+                index: self.infinite[k],
+                pmf: p_one,
+                u_reused: (x - k as f32).clamp(0.0, ONE_MINUS_EPSILON),
+            });
+        }
+        Ok(((u - p_infinite) / p_tree).clamp(0.0, ONE_MINUS_EPSILON))
+    }
+
+    /// The probability of entering the tree (1 without lights at infinity).
+    #[inline(always)]
+    fn tree_share(&self) -> f32 {
+        if self.infinite.is_empty() {
+            1.0
+        } else {
+            self.split().1
+        }
+    }
+
+    /// Selection within the tree (one light, or the walk of [`descend`] from the root).
     fn tree_select(&self, at: &ShadingPoint, u: f32) -> Option<Selection> {
-        let mut u = u.clamp(0.0, ONE_MINUS_EPSILON);
         if let Some((light, bounds)) = &self.single {
             // One light: take it if it can contribute at all.
             return (bounds.importance(at) > 0.0).then_some(Selection {
                 index: *light,
                 pmf: 1.0,
-                u_reused: u,
+                u_reused: u.clamp(0.0, ONE_MINUS_EPSILON),
             });
         }
-        let mut pmf = 1.0f32;
-        let mut node = self.nodes.first()?;
+        self.nodes.first()?;
+        let mut walk = Walk::from_root(u);
         loop {
-            let importance = node.importance(at);
-            let total = usable_total(&importance)?;
-            // The lane whose interval of the CDF holds u (the last usable lane if
-            // rounding leaves u past every interval).
-            let mut chosen = (0, 0.0f32, 0.0f32);
-            let mut below = 0.0f32;
-            for (lane, &imp) in importance.iter().enumerate() {
-                let p = imp / total;
-                if p > 0.0 {
-                    chosen = (lane, below, p);
-                    if u < below + p {
-                        break;
-                    }
-                    below += p;
-                }
+            let node = &self.nodes[walk.node as usize];
+            match descend(node, &node.importance(at), walk, Search::Linear) {
+                Step::Inner(next) => walk = next,
+                Step::Light(selection) => return Some(selection),
+                Step::Dead => return None,
             }
-            let (lane, below, p) = chosen;
-            u = ((u - below) / p).clamp(0.0, ONE_MINUS_EPSILON);
-            pmf *= p;
-            if node.leaf[lane] {
-                return Some(Selection {
-                    index: node.child[lane] as usize,
-                    pmf,
-                    u_reused: u,
-                });
-            }
-            node = &self.nodes[node.child[lane] as usize];
         }
     }
 
@@ -231,25 +243,14 @@ impl BvhSelector {
 
 impl LightSelector for BvhSelector {
     fn select(&self, at: &ShadingPoint, u: f32) -> Option<Selection> {
-        if self.infinite.is_empty() {
-            return self.tree_select(at, u);
+        match self.entry(u) {
+            Err(infinite) => Some(infinite),
+            Ok(u) => {
+                let mut s = self.tree_select(at, u)?;
+                s.pmf *= self.tree_share();
+                Some(s)
+            }
         }
-        let (p_one, p_tree) = self.split();
-        let u = u.clamp(0.0, ONE_MINUS_EPSILON);
-        let p_infinite = 1.0 - p_tree;
-        if u < p_infinite {
-            let x = u / p_one;
-            let k = (x as usize).min(self.infinite.len() - 1);
-            return Some(Selection {
-                index: self.infinite[k],
-                pmf: p_one,
-                u_reused: (x - k as f32).clamp(0.0, ONE_MINUS_EPSILON),
-            });
-        }
-        let u = ((u - p_infinite) / p_tree).clamp(0.0, ONE_MINUS_EPSILON);
-        let mut s = self.tree_select(at, u)?;
-        s.pmf *= p_tree;
-        Some(s)
     }
 
     fn pmf(&self, at: &ShadingPoint, index: usize) -> f32 {

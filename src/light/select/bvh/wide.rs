@@ -304,5 +304,11 @@ fn add_node(
     index
 }
 
+#[cfg(target_arch = "x86_64")]
+mod pair;
+
+#[cfg(target_arch = "x86_64")]
+pub(super) use pair::importance_pair;
+
 #[cfg(test)]
 mod tests;
