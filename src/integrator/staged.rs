@@ -31,7 +31,8 @@ use crate::scene::Scene;
 pub enum Begun {
     /// The camera ray escaped, or met a surface from behind: nothing left to sample.
     Done(Spectrum),
-    /// Waiting for the sample of [`Staged::light`] at [`Staged::at`].
+    /// Waiting for its light to be chosen ([`Staged::choose`]) and sampled at
+    /// [`Staged::at`].
     Light(Staged),
 }
 
@@ -43,13 +44,16 @@ pub struct Staged {
     at: ShadingPoint,
     draw: LightDraw,
     u_select: f32,
+    /// Whether [`Staged::choose`] has recorded the light.
+    chosen: bool,
 }
 
 impl Staged {
-    /// The light to sample and its selection probability (`None`: no light, or none
-    /// chosen yet).
+    /// The light to sample and its selection probability (`None`: no light), once
+    /// [`Staged::choose`] has recorded it.
     #[inline]
     pub fn light(&self) -> Option<Selection> {
+        debug_assert!(self.chosen, "the light is chosen before it is asked for");
         self.draw.selection
     }
 
@@ -64,6 +68,7 @@ impl Staged {
     #[inline]
     pub fn choose(&mut self, selection: Option<Selection>) {
         self.draw.selection = selection;
+        self.chosen = true;
     }
 
     /// The shading point to sample the light at.
@@ -129,6 +134,7 @@ impl Estimator {
             at,
             draw,
             u_select,
+            chosen: false,
         })
     }
 
@@ -151,6 +157,10 @@ impl Estimator {
         let w_out = -ray.d.normalize();
         let sh = Shading::at(scene, hit, w_out).expect("begin found the hit seen from the front");
         let ctx = self.context(scene, &sh.at, &sh.hit, &sh.material, sh.w_out);
+        debug_assert!(
+            staged.chosen,
+            "the light is chosen before the estimate finishes"
+        );
         let reflected = if self.kind == EstimatorKind::Light {
             light::score(&ctx, staged.draw.selection, ls)
         } else {

@@ -247,12 +247,13 @@ fn samples_do_not_depend_on_rounds_passes_or_tiles() {
 /// Blocks whose camera rays all miss the scene are not traced, and every sample keeps
 /// the film position and radiance it has without culling (bit for bit; the packets'
 /// own agreement with single rays is the test above), over whole images of scenes with
-/// background around them: rays one at a time (`legacy_v06`, `tent_point`), in
-/// packets with light lanes and without (`mesh_obj`), and an environment map behind
-/// (`envmap_rotated`). Some but not all blocks are culled; and with a footprint that
-/// culls every block, the samples change (so each path asks the footprint). Where the
-/// sink takes no film positions, culled samples of a scene without an environment go
-/// with zero radiance, the radiance they would have had, and another position.
+/// background around them: rays one at a time (`legacy_v06`; `tent_point`, shaded in
+/// stages for its light tree and whole), in packets in stages with light lanes and whole
+/// (`mesh_obj`), and an environment map behind (`envmap_rotated`). Some but not all
+/// blocks are culled; and with a footprint that culls every block, the samples change
+/// (so each path asks the footprint). Where the sink takes no film positions, culled
+/// samples of a scene without an environment go with zero radiance, the radiance they
+/// would have had, and another position.
 #[test]
 fn culled_blocks_give_the_samples_of_single_rays() {
     for spec in [

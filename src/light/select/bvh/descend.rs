@@ -150,3 +150,49 @@ fn masked(importance: &[f32; LANES], total: f32, u: f32) -> (usize, f32, f32) {
     let below = [0.0, upto0, upto1, upto2][lane];
     (lane, below, p.to_array()[lane])
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The two searches give the same lane, probability below it and its own, bit for
+    /// bit, at every boundary: importances of zero, the least subnormal, ordinary and
+    /// huge sizes in every pattern of four lanes (shares that underflow to zero, zeros
+    /// between positive lanes), with u at 0, 0.5, the largest number below 1, NaN, and
+    /// at each running sum and one float either side of it; the fallback past every
+    /// interval is reached, by rounding and by NaN.
+    #[test]
+    fn both_searches_choose_alike_at_every_boundary() {
+        let sizes = [0.0, 1e-45, 1.0, 3.0, 1e30];
+        let (mut cases, mut past) = (0, 0);
+        for code in 0..sizes.len().pow(LANES as u32) {
+            let importance: [f32; LANES] =
+                std::array::from_fn(|l| sizes[code / sizes.len().pow(l as u32) % sizes.len()]);
+            let Some(total) = usable_total(&importance) else {
+                continue;
+            };
+            let mut us = vec![0.0, 0.5, ONE_MINUS_EPSILON, f32::NAN];
+            let mut sum = 0.0f32;
+            for i in importance {
+                sum += i / total;
+                us.extend([sum.next_down(), sum, sum.next_up()]);
+            }
+            for u in us {
+                // A walk's number is clamped to [0, 1) (NaN stays NaN).
+                let u = u.clamp(0.0, ONE_MINUS_EPSILON);
+                let bits =
+                    |(lane, below, p): (usize, f32, f32)| (lane, below.to_bits(), p.to_bits());
+                assert_eq!(
+                    bits(linear(&importance, total, u)),
+                    bits(masked(&importance, total, u)),
+                    "importances {importance:?}, u {u:e}"
+                );
+                cases += 1;
+                // Past every interval: u at or above the last sum, or NaN.
+                past += (u >= sum || u.is_nan()) as u32;
+            }
+        }
+        assert!(cases > 5_000, "{cases} cases");
+        assert!(past > 500, "{past} numbers past every interval");
+    }
+}

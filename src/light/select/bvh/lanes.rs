@@ -91,46 +91,54 @@ impl BvhSelector {
         #[cfg(target_arch = "x86_64")]
         if pairs && std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the processor has AVX2, checked just above.
-            return unsafe { self.walk_pairs_avx2(&mut walks) };
+            return unsafe { self.walk_pairs(&mut walks) };
         }
-        self.walk(&mut walks, false);
+        // Other processors walk one at a time.
+        #[cfg(not(target_arch = "x86_64"))]
+        let _ = pairs;
+        self.walk(&mut walks);
     }
 
+    /// Takes every walk of `walks` to its end, level by level, one walk at a time.
+    fn walk(&self, walks: &mut Walks<'_>) {
+        while walks.count > 0 {
+            walks.kept = 0;
+            self.singles(walks, 0);
+            walks.count = walks.kept;
+        }
+    }
+
+    /// [`BvhSelector::walk`], two walks at a time through [`importance_pair`] (the
+    /// last alone where a level has an odd number).
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    unsafe fn walk_pairs_avx2(&self, walks: &mut Walks<'_>) {
-        self.walk(walks, true)
-    }
-
-    /// Takes every walk of `walks` to its end, level by level; two at a time through
-    /// [`importance_pair`] where `pairs`.
-    #[inline(always)]
-    fn walk(&self, walks: &mut Walks<'_>, pairs: bool) {
+    fn walk_pairs(&self, walks: &mut Walks<'_>) {
         let nodes = &self.nodes;
         while walks.count > 0 {
             walks.kept = 0;
             let mut k = 0;
-            #[cfg(target_arch = "x86_64")]
-            if pairs {
-                while k + 1 < walks.count {
-                    let (i, j) = (walks.active[k] as usize, walks.active[k + 1] as usize);
-                    let a = &nodes[walks.walks[i].node as usize];
-                    let b = &nodes[walks.walks[j].node as usize];
-                    let (at_a, at_b) = (walks.jobs[i].0, walks.jobs[j].0);
-                    // SAFETY: `pairs` only from `walk_pairs_avx2`, on a processor with
-                    // AVX2.
-                    let (ia, ib) = unsafe { importance_pair(a, at_a, b, at_b) };
-                    walks.step(i, a, &ia);
-                    walks.step(j, b, &ib);
-                    k += 2;
-                }
+            while k + 1 < walks.count {
+                let (i, j) = (walks.active[k] as usize, walks.active[k + 1] as usize);
+                let a = &nodes[walks.walks[i].node as usize];
+                let b = &nodes[walks.walks[j].node as usize];
+                let (ia, ib) = importance_pair(a, walks.jobs[i].0, b, walks.jobs[j].0);
+                walks.step(i, a, &ia);
+                walks.step(j, b, &ib);
+                k += 2;
             }
-            for k in k..walks.count {
-                let j = walks.active[k] as usize;
-                let node = &nodes[walks.walks[j].node as usize];
-                walks.step(j, node, &node.importance(walks.jobs[j].0));
-            }
+            self.singles(walks, k);
             walks.count = walks.kept;
+        }
+    }
+
+    /// The steps of the walks `walks.active[from..walks.count]` at this level, one at a
+    /// time.
+    #[inline(always)]
+    fn singles(&self, walks: &mut Walks<'_>, from: usize) {
+        for k in from..walks.count {
+            let j = walks.active[k] as usize;
+            let node = &self.nodes[walks.walks[j].node as usize];
+            walks.step(j, node, &node.importance(walks.jobs[j].0));
         }
     }
 }
@@ -151,8 +159,8 @@ mod tests {
     /// with 1 to 8 jobs at a time: on trees of rectangles and spheres
     /// (`shirley-100`), of 256 triangles (`mesh_ply_serialized`), of point lights
     /// (`tent_point`) and with a light at infinity beside the tree (`shirley-100` under
-    /// a constant sky); from points around the lights, some facing away
-    /// from all of them, some on them, with numbers at 0 and just below 1.
+    /// a constant sky); from points anywhere in the scene's bounds, facing anywhere
+    /// (some see no light), with numbers at 0 and just below 1.
     #[test]
     fn walks_together_choose_what_one_walk_chooses() {
         for spec in [
