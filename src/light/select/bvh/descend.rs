@@ -66,7 +66,10 @@ pub(super) enum Step {
 #[inline(always)]
 pub(super) fn usable_total(importance: &[f32; LANES]) -> Option<f32> {
     let total = (importance[0] + importance[1]) + (importance[2] + importance[3]);
-    (total > 0.0 && total.is_finite()).then_some(total)
+    // Two comparisons rather than `is_finite`, which LLVM merged with the first into a
+    // test on the bits: 1.6 M fewer instructions in 210 M on `mesh_ply_serialized` at
+    // 16 spp (callgrind; BENCHMARKS.md, session 38).
+    (total > 0.0 && total < f32::INFINITY).then_some(total)
 }
 
 /// One level of the descent of `walk` at `node`, whose children have importances
