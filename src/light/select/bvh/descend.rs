@@ -7,7 +7,8 @@
 //! search"), over four entries: of the children with probability `p_l = I_l / ΣI` that
 //! is positive, in lane order, the first whose running sum exceeds `u`, else the last
 //! positive one (where rounding leaves `u` past every interval). Two ways to find it,
-//! with the same result bit for bit (the tests of `bvh::lanes` compare them):
+//! with the same result bit for bit (the table test below and the tests of `bvh::lanes`
+//! compare them):
 //! [`Search::Linear`], the lecture's loop, for one walk at a time, where the branch
 //! predictor runs ahead into the next level; and [`Search::Masked`], one SIMD division
 //! and two comparisons turned into bit masks, for walks interleaved with each other
