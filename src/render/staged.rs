@@ -90,10 +90,7 @@ impl Stages {
         if staging.walks {
             self.choose_lights(selector);
         }
-        match &staging.lanes {
-            Some(lanes) => self.sample_lights(scene, estimator, lanes),
-            None => self.sample_lights_alone(scene, estimator),
-        }
+        self.sample_lights(scene, estimator, staging.lanes.as_ref());
         for (k, i) in order.enumerate() {
             let (p, hit) = &mut traced[i];
             // Each arm hands its estimate on itself: merged into one value first, the
@@ -131,22 +128,10 @@ impl Stages {
         }
     }
 
-    /// The light sample of every staged estimate, one at a time.
-    fn sample_lights_alone(&mut self, scene: &Scene, estimator: &Estimator) {
-        let Stages { begun, samples } = self;
-        samples.clear();
-        samples.extend(begun.iter().map(|staged| match staged {
-            Begun::Light(staged) => staged.light().and_then(|sel| {
-                scene.lights[sel.index].sample(staged.at(), staged.u_point(), estimator.lights)
-            }),
-            Begun::Done(_) => None,
-        }));
-    }
-
-    /// The light sample of every staged estimate: those of lights with lanes
+    /// The light sample of every staged estimate: those of lights with `lanes`
     /// [`LANES`] at a time, batched by kernel (rectangles with rectangles, spheres
-    /// with spheres), the others one by one.
-    fn sample_lights(&mut self, scene: &Scene, estimator: &Estimator, lanes: &LightLanes) {
+    /// with spheres), the others (all, without lanes) one by one.
+    fn sample_lights(&mut self, scene: &Scene, estimator: &Estimator, lanes: Option<&LightLanes>) {
         let Stages { begun, samples } = self;
         samples.clear();
         samples.resize(begun.len(), None);
@@ -157,7 +142,8 @@ impl Stages {
                 continue;
             };
             let Some(sel) = staged.light() else { continue };
-            if let Some(kernel) = lanes.kernel(sel.index) {
+            let kernel = lanes.and_then(|l| l.kernel(sel.index));
+            if let (Some(lanes), Some(kernel)) = (lanes, kernel) {
                 batch[kernel][waiting[kernel]] = k;
                 waiting[kernel] += 1;
                 if waiting[kernel] == LANES {
@@ -169,6 +155,8 @@ impl Stages {
                 samples[k] = light.sample(staged.at(), staged.u_point(), estimator.lights);
             }
         }
+        // The short batches left (there are none without lanes).
+        let Some(lanes) = lanes else { return };
         for (batch, &waiting) in batch.iter().zip(&waiting) {
             if waiting > 0 {
                 sample_batch(scene, estimator, lanes, begun, &batch[..waiting], samples);
