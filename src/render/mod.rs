@@ -182,7 +182,8 @@ pub fn render_carrying(
             .collect();
     }
     let optimal: &[Mutex<OptimalPixel>] = if optimal_mis { &carry.optimal } else { &[] };
-    // Lights chosen and sampled `LANES` shading points at a time where that pays.
+    // The estimates in stages, lights chosen and sampled `LANES` shading points at a
+    // time where they can be.
     let staging = staged::Staging::new(scene, &estimator);
     // Blocks of pixels whose camera rays all miss the scene skip the traversal, and
     // without an environment the whole sample but its film position (not under

@@ -104,9 +104,9 @@ pub(super) struct CameraPackets<'a> {
     pub optimal: &'a [Mutex<OptimalPixel>],
     /// Samples whose radiance was not finite.
     pub invalid: &'a AtomicU64,
-    /// What the estimates are shaded in stages for ([`Staging`]), when the estimator
-    /// [`stages`](Estimator::stages) and they pay; else every estimate runs whole, one
-    /// at a time.
+    /// What the estimates are shaded in stages with ([`Staging`]), when the estimator
+    /// [`stages`](Estimator::stages) and the fast paths are on; else every estimate runs
+    /// whole, one at a time.
     pub staging: Option<&'a Staging>,
     /// Where on the film the camera may see the scene (its top BVH boxes): the camera
     /// rays of a block of pixels that sees none of it are not traced (`None`: every ray

@@ -6,6 +6,7 @@ use std::collections::BTreeMap;
 use super::*;
 use crate::geometry::Aabb;
 use crate::integrator::{EstimatorKind, MisHeuristic};
+use crate::light::LightSampling;
 use crate::render::frustum::{FrustumCull, TOP_BOXES};
 use crate::render::staged::Staging;
 use crate::scene::load;
@@ -69,6 +70,9 @@ fn packets_give_the_samples_of_single_rays() {
         ("builtin:shirley-100", "own", 0.6),
         ("tests/scenes/mesh_ply_serialized.xml", "own", 0.5),
         ("tests/scenes/mesh_ply_serialized.xml", "light", 0.5),
+        ("tests/scenes/envmap_rotated.xml", "own", 0.5),
+        ("tests/scenes/envmap_rotated.xml", "light", 0.5),
+        ("tests/scenes/mesh_obj.xml", "area", 0.5),
     ] {
         let optimal_mis = which == "optimal";
         let scene = load(spec).expect("scene");
@@ -92,6 +96,9 @@ fn packets_give_the_samples_of_single_rays() {
         if which == "light" {
             scenes_own.estimator = EstimatorKind::Light;
         }
+        if which == "area" {
+            scenes_own.light_sampling = LightSampling::Area;
+        }
         // Independent numbers, and Sobol's points and the strata's cells drawn a chunk
         // at a time.
         for sampler in SamplerKind::ALL {
@@ -109,13 +116,17 @@ fn packets_give_the_samples_of_single_rays() {
             };
             let invalid = AtomicU64::new(0);
             // The estimates in stages (all but optimal MIS), with light samples in lanes
-            // where they apply (not to point lights or triangles), and whole.
+            // where they apply (not to point lights, triangles, environment maps or
+            // rectangles under `area`), and whole.
             let staging = Staging::new(&scene, &estimator);
             assert_eq!(staging.is_some(), !optimal_mis, "{spec}");
+            let no_lanes = ["tent", "mesh_ply", "envmap"]
+                .iter()
+                .any(|name| spec.contains(name));
             assert_eq!(
                 staging.as_ref().is_some_and(Staging::has_lanes),
-                !optimal_mis && !spec.contains("tent") && !spec.contains("mesh_ply"),
-                "{spec}"
+                !optimal_mis && !no_lanes && which != "area",
+                "{spec} {which}"
             );
             let packets = CameraPackets {
                 scene: &scene,
