@@ -19,7 +19,7 @@ pub use mis::{MisHeuristic, MisSettings, OptimalPixel, TechniqueMoments};
 pub use probe::{Probe, ProbeSample};
 pub use shadow_rays::ShadowRays;
 pub use spatial::{Reuse, SpatialReservoir, SpatialSurface};
-pub use staged::{Begun, Staged};
+pub use staged::{Begun, LightJob, Staged};
 
 use std::borrow::Cow;
 use std::cell::RefCell;

@@ -186,20 +186,23 @@ pub(super) fn draw_light(
     }
 }
 
-/// The rest of a balance or power estimate with one light sample, after
-/// [`draw_light`] drew `draw` and the light was sampled (`ls`): the light sample's
-/// score and the BSDF samples, the same as [`estimate`] gives from the same state.
+/// The rest of a balance or power estimate after [`draw_light`] drew each light
+/// sample's `draw` and its light was sampled (`ls`), the pairs `drawn` in the order of
+/// the draws: the light samples' scores and the BSDF samples, the same as [`estimate`]
+/// gives from the same state.
 #[inline(always)]
-pub(super) fn finish(
+pub(super) fn finish<'d>(
     ctx: &Context<'_>,
     mis: MisSettings,
-    draw: &LightDraw,
-    ls: Option<LightSample>,
+    drawn: impl Iterator<Item = (&'d LightDraw, Option<LightSample>)>,
     src: &mut impl Uniform,
 ) -> Spectrum {
-    debug_assert!(mis.light_samples == 1 && ctx.ris.is_none());
+    debug_assert!(ctx.ris.is_none());
+    let n = mis.light_samples as f32;
     let mut sum = Spectrum::ZERO;
-    sum += score_light_sample(ctx, draw.selection, ls, light_scale(mis), 1.0);
+    for (draw, ls) in drawn {
+        sum += score_light_sample(ctx, draw.selection, ls, light_scale(mis), 1.0 / n);
+    }
     add_bsdf_samples(ctx, mis, src, sum)
 }
 

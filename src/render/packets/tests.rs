@@ -49,12 +49,14 @@ fn set_up(
 /// scenes of rectangles, spheres and meshes, with a count of samples that is not a
 /// multiple of the packet and with optimal MIS's per-pixel state; and on scenes whose
 /// rays are traced one at a time (a BVH of one node, or a scene tested without a
-/// tree). Where the estimate runs in stages (`mis` and `light`: with light lanes, or
-/// with the light tree's walks together), in stages and whole.
+/// tree). Where the estimate runs in stages (`mis` with one light sample or more, and
+/// `light`: with light lanes, with the light tree's walks together, with neither), in
+/// stages and whole.
 #[test]
 fn packets_give_the_samples_of_single_rays() {
-    // (scene, estimator: the scene's own, optimal MIS or `light`, height of the tile's
-    // centre as a share of the image's)
+    // (scene, estimator: the scene's own, optimal MIS, `light`, the scene's own under
+    // `area` or with three light samples; height of the tile's centre as a share of the
+    // image's)
     for (spec, which, at) in [
         ("builtin:assignment", "own", 0.5),
         ("builtin:assignment", "light", 0.5),
@@ -73,6 +75,9 @@ fn packets_give_the_samples_of_single_rays() {
         ("tests/scenes/envmap_rotated.xml", "own", 0.5),
         ("tests/scenes/envmap_rotated.xml", "light", 0.5),
         ("tests/scenes/mesh_obj.xml", "area", 0.5),
+        ("tests/scenes/disk_twosided.xml", "own", 0.5),
+        ("builtin:shirley-100", "three", 0.6),
+        ("tests/scenes/tent_point.xml", "three", 0.85),
     ] {
         let optimal_mis = which == "optimal";
         let scene = load(spec).expect("scene");
@@ -99,6 +104,10 @@ fn packets_give_the_samples_of_single_rays() {
         if which == "area" {
             scenes_own.light_sampling = LightSampling::Area;
         }
+        // Three light samples per estimate (disk_twosided's own are two).
+        if which == "three" {
+            scenes_own.mis.light_samples = 3;
+        }
         // Independent numbers, and Sobol's points and the strata's cells drawn a chunk
         // at a time.
         for sampler in SamplerKind::ALL {
@@ -115,12 +124,13 @@ fn packets_give_the_samples_of_single_rays() {
                 (Vec::new(), Vec::new())
             };
             let invalid = AtomicU64::new(0);
-            // The estimates in stages (all but optimal MIS), with light samples in lanes
-            // where they apply (not to point lights, triangles, environment maps or
-            // rectangles under `area`), and whole.
+            // The estimates in stages (all but optimal MIS; with one light sample each,
+            // or two or three), with light samples in lanes where they apply (not to
+            // point lights, triangles, disks, environment maps or rectangles under
+            // `area`), and whole.
             let staging = Staging::new(&scene, &estimator);
             assert_eq!(staging.is_some(), !optimal_mis, "{spec}");
-            let no_lanes = ["tent", "mesh_ply", "envmap"]
+            let no_lanes = ["tent", "mesh_ply", "envmap", "disk"]
                 .iter()
                 .any(|name| spec.contains(name));
             assert_eq!(
