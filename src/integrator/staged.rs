@@ -197,7 +197,9 @@ impl Estimator {
             (&job.draw, ls)
         });
         let reflected = if self.kind == EstimatorKind::Light {
-            let (draw, ls) = drawn.last().expect("one light sample");
+            let mut drawn = drawn;
+            let (draw, ls) = drawn.next().expect("one light sample");
+            debug_assert!(drawn.next().is_none(), "the light estimate has one sample");
             light::score(&ctx, draw.selection, ls)
         } else {
             mis::finish(&ctx, self.mis, drawn, src)

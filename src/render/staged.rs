@@ -43,7 +43,7 @@ impl Staging {
     /// not go together (an environment map, one triangle, rectangles under `area`), the
     /// stages still pay: each pass is one short loop over the chunk, whose independent
     /// samples overlap in the processor, though it runs about 5 % more instructions
-    /// (1.18× on `envmap_rotated`, 1.03–1.09× on most scenes under `area`, 0.95× on
+    /// (1.18× on `envmap_rotated`, 1.03–1.10× on most scenes under `area`, 0.95× on
     /// `legacy_v06` under `area`: BENCHMARKS.md, session 39).
     pub(super) fn new(scene: &Scene, estimator: &Estimator) -> Option<Staging> {
         if !estimator.stages() || !estimator.lights.fast_paths {
@@ -144,6 +144,12 @@ impl Stages {
                 (Begun::Light(staged), Some(hit)) => {
                     let lights = first..first + per;
                     first += per;
+                    debug_assert!(
+                        self.jobs[lights.clone()]
+                            .iter()
+                            .all(|&(o, _)| o as usize == k),
+                        "the estimate's own light samples"
+                    );
                     let jobs = self.jobs[lights.clone()].iter().map(|(_, light)| light);
                     let jobs = jobs.zip(self.samples[lights].iter().copied());
                     let src = &mut p.sampler;
@@ -154,6 +160,7 @@ impl Stages {
                 (Begun::Light(_), None) => unreachable!("a staged estimate has a hit"),
             }
         }
+        debug_assert_eq!(first, self.jobs.len(), "every light sample scored");
     }
 
     /// The light of every job, chosen [`LANES`] at a time.

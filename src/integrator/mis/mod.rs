@@ -152,8 +152,8 @@ fn add_bsdf_samples(
 }
 
 /// The numbers and the light of one light sample, drawn before the light itself is
-/// sampled: [`light_sample`]'s first step, and what [`super::Estimator::begin`] leaves
-/// for its caller.
+/// sampled: [`light_sample`]'s first step, and the heart of each
+/// [`LightJob`](super::LightJob) that [`super::Estimator::begin`] hands on.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct LightDraw {
     /// The light chosen (`None`: no light can contribute).
@@ -200,9 +200,12 @@ pub(super) fn finish<'d>(
     debug_assert!(ctx.ris.is_none());
     let n = mis.light_samples as f32;
     let mut sum = Spectrum::ZERO;
+    let mut scored = 0;
     for (draw, ls) in drawn {
         sum += score_light_sample(ctx, draw.selection, ls, light_scale(mis), 1.0 / n);
+        scored += 1;
     }
+    debug_assert_eq!(scored, mis.light_samples, "one score per light sample");
     add_bsdf_samples(ctx, mis, src, sum)
 }
 

@@ -27,8 +27,8 @@
 //! bring no light at all: no camera ray is made, and the film position is drawn only
 //! for a filter that uses it.
 //!
-//! Where the estimator runs in stages and some light has lanes or the light tree's walks
-//! go together, a chunk is shaded in stages instead (see [`super::staged`]); on a tree
+//! Where the estimator runs in stages and the fast paths are on, a chunk is shaded in
+//! stages instead (see [`super::staged`] and its `Staging::new`); on a tree
 //! of one node, or in a scene tested without a tree
 //! ([`Geometry::is_flat`](crate::geometry::Geometry::is_flat)), its camera rays are then
 //! traced one at a time.

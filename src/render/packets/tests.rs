@@ -76,6 +76,7 @@ fn packets_give_the_samples_of_single_rays() {
         ("tests/scenes/envmap_rotated.xml", "light", 0.5),
         ("tests/scenes/mesh_obj.xml", "area", 0.5),
         ("tests/scenes/disk_twosided.xml", "own", 0.5),
+        ("tests/scenes/disk_twosided.xml", "light", 0.5),
         ("builtin:shirley-100", "three", 0.6),
         ("tests/scenes/tent_point.xml", "three", 0.85),
     ] {
