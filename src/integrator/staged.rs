@@ -189,7 +189,7 @@ impl Estimator {
         let w_out = -ray.d.normalize();
         let sh = Shading::at(scene, hit, w_out).expect("begin found the hit seen from the front");
         let ctx = self.context(scene, &sh.at, &sh.hit, &sh.material, sh.w_out);
-        let drawn = jobs.map(|(job, ls)| {
+        let mut drawn = jobs.map(|(job, ls)| {
             debug_assert!(
                 job.chosen,
                 "the light is chosen before the estimate finishes"
@@ -197,7 +197,6 @@ impl Estimator {
             (&job.draw, ls)
         });
         let reflected = if self.kind == EstimatorKind::Light {
-            let mut drawn = drawn;
             let (draw, ls) = drawn.next().expect("one light sample");
             debug_assert!(drawn.next().is_none(), "the light estimate has one sample");
             light::score(&ctx, draw.selection, ls)
