@@ -50,6 +50,8 @@ pub mod flag {
     pub const LIGHT_SAMPLES: &str = "light-samples";
     /// `--bsdf-samples`.
     pub const BSDF_SAMPLES: &str = "bsdf-samples";
+    /// `--diffuse-bsdf-samples`.
+    pub const DIFFUSE_BSDF_SAMPLES: &str = "diffuse-bsdf-samples";
     /// `--light-sampling`.
     pub const LIGHT_SAMPLING: &str = "light-sampling";
     /// `--envmap-compensation` (a switch).

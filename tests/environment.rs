@@ -118,6 +118,48 @@ fn white_furnace_is_one_for_every_estimator() {
     }
 }
 
+/// Lambertian points go without BSDF samples (`diffuse_bsdf_samples: Some(0)`) only where
+/// light samples reach every emitter: under a sky sampled with MIS compensation, whose
+/// texels at or below the mean only BSDF samples see, they keep them (the same estimates,
+/// bit for bit); without compensation they take light samples alone, and stay unbiased.
+#[test]
+fn a_compensated_sky_keeps_the_bsdf_samples_of_lambertian_points() {
+    let mut b = SceneBuilder::new("sky");
+    let white = b.material(Material::Diffuse(Diffuse {
+        reflectance: Spectrum::ONE,
+    }));
+    b.sphere(Vec3::ZERO, 1.0, white, None);
+    // Bright and dim texels: compensation samples only the bright ones.
+    let texels = (0..40)
+        .map(|i| Spectrum::splat([0.2, 3.0][i % 3 / 2]))
+        .collect();
+    let img = LatLongImage::new(8, 5, texels).expect("image");
+    b.environment(Environment::from_image(img, 1.0, Mat3::from_rotation_z(0.4)).expect("env"));
+    let scene = b.build(camera(), 1).expect("scene");
+    let ray = Ray::new(Vec3::new(0.0, 0.0, 4.0), Vec3::new(0.3, 0.4, -4.0));
+    let mis = |diffuse_bsdf_samples, lights: LightStrategy| {
+        Estimator::new(&scene, EstimatorKind::Mis, LightSelect::Uniform)
+            .with_mis(MisSettings {
+                diffuse_bsdf_samples,
+                ..MisSettings::default()
+            })
+            .with_light_strategy(&scene, lights)
+    };
+    let n = 20_000;
+    let both = estimate_with(&mis(None, compensated()), &scene, &ray, n);
+    let alone = estimate_with(&mis(Some(0), compensated()), &scene, &ray, n);
+    assert_eq!(both, alone, "compensated: the BSDF samples stay");
+    let plain = LightStrategy::default();
+    let exact = estimate_with(&mis(None, plain), &scene, &ray, 400_000);
+    let alone = estimate_with(&mis(Some(0), plain), &scene, &ray, n);
+    assert_ne!(alone, estimate_with(&mis(None, plain), &scene, &ray, n));
+    let z = (alone.0 - exact.0) / (alone.1.powi(2) + exact.1.powi(2)).sqrt();
+    assert!(
+        z.abs() < 4.0,
+        "light samples alone: {alone:?} vs {exact:?}, z = {z}"
+    );
+}
+
 #[test]
 fn constant_environment_gives_irradiance_pi_l_on_a_plane() {
     let (rho, l) = (0.8f32, 1.5f32);

@@ -80,9 +80,21 @@ fn all_estimators_agree_on_the_assignment_scene() {
             heuristic,
             light_samples: 2,
             bsdf_samples: 1,
+            diffuse_bsdf_samples: None,
         };
         runs.push((format!("mis {heuristic} 2+1"), EstimatorKind::Mis, mis));
     }
+    // Light samples alone at the Lambertian points (the diffuse sphere, the floor), both
+    // techniques on the Phong spheres, in the renderer's staged shading.
+    let diffuse_alone = MisSettings {
+        diffuse_bsdf_samples: Some(0),
+        ..MisSettings::default()
+    };
+    runs.push((
+        "mis power, diffuse 1+0".into(),
+        EstimatorKind::Mis,
+        diffuse_alone,
+    ));
     for (kind, estimator, mis) in runs {
         let spp = match estimator {
             EstimatorKind::Light | EstimatorKind::Mis => 512,

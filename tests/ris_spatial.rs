@@ -138,6 +138,7 @@ fn estimators(scene: &Scene) -> Vec<(String, Estimator)> {
                 heuristic,
                 light_samples,
                 bsdf_samples,
+                diffuse_bsdf_samples: None,
             };
             let est = Estimator::new(scene, EstimatorKind::Mis, LightSelect::Ris)
                 .with_mis(mis)

@@ -29,7 +29,7 @@ use glam::Vec3;
 use crate::bsdf::{Bsdf, Material};
 use crate::geometry::{NO_LIGHT, Ray, SurfaceHit};
 use crate::light::select::{LightSelect, Selector, silent_lights};
-use crate::light::{LightSample, LightStrategy, ShadingPoint};
+use crate::light::{Light, LightSample, LightStrategy, ShadingPoint};
 use crate::math::{Frame, Spectrum};
 use crate::sampling::Uniform;
 use crate::scene::Scene;
@@ -51,6 +51,12 @@ pub struct Estimator {
     /// none, e.g. a compensated constant sky alone): one-sample MIS then always takes
     /// the BSDF technique.
     lights_sample: bool,
+    /// Whether light samples alone reach every emitter under `lights`: some light draws
+    /// samples, and no environment is sampled with MIS compensation (whose density is
+    /// zero wherever the map is at or below its mean, directions only BSDF samples see).
+    /// Only then may a shading point go without BSDF samples
+    /// ([`MisSettings::diffuse_bsdf_samples`]).
+    lights_cover: bool,
     /// Sample counts and weighting of the MIS estimator.
     pub mis: MisSettings,
     /// How every light is sampled (per-shape strategy, environment compensation).
@@ -76,6 +82,7 @@ impl Estimator {
             select,
             selector_excludes: false,
             lights_sample: !scene.lights.is_empty(),
+            lights_cover: lights_cover(scene, LightStrategy::default()),
             mis: MisSettings::default(),
             lights: LightStrategy::default(),
             ris: (select == LightSelect::Ris).then_some(DEFAULT_RIS_CANDIDATES),
@@ -104,6 +111,7 @@ impl Estimator {
         self.selector_excludes = silent_lights(&scene.lights, lights).is_some();
         self.selector = self.selector.without_silent(&scene.lights, lights);
         self.lights_sample = scene.lights.iter().any(|l| !l.draws_no_samples(lights));
+        self.lights_cover = lights_cover(scene, lights);
         self.lights = lights;
         self
     }
@@ -217,8 +225,17 @@ impl Estimator {
             optimal: None,
             emitters_reachable: self.emitters_reachable,
             lights_sample: self.lights_sample,
+            lights_cover: self.lights_cover,
         }
     }
+}
+
+/// Whether light samples alone reach every emitter of `scene` under `lights` (see
+/// `Estimator::lights_cover`).
+fn lights_cover(scene: &Scene, lights: LightStrategy) -> bool {
+    let compensated = |l: &Light| l.is_infinite() && lights.env_compensation;
+    scene.lights.iter().any(|l| !l.draws_no_samples(lights))
+        && !scene.lights.iter().any(compensated)
 }
 
 /// What every estimate at a surface hit starts from: its material (textured), the hit
@@ -313,6 +330,8 @@ struct Context<'a> {
     emitters_reachable: bool,
     /// Whether some light draws samples (see [`Estimator`]).
     lights_sample: bool,
+    /// Whether light samples alone reach every emitter (see [`Estimator`]).
+    lights_cover: bool,
 }
 
 impl Context<'_> {

@@ -80,6 +80,7 @@ impl RenderSettings {
                 heuristic: p.mis.unwrap_or(defaults.heuristic),
                 light_samples: p.light_samples.unwrap_or(defaults.light_samples),
                 bsdf_samples: p.bsdf_samples.unwrap_or(defaults.bsdf_samples),
+                diffuse_bsdf_samples: p.diffuse_bsdf_samples,
             },
             light_sampling: p.light_sampling.unwrap_or(LightSampling::Best),
             light_select: p.light_select.unwrap_or(LightSelect::Bvh),
@@ -112,6 +113,16 @@ impl RenderSettings {
             return Err(SettingsError::Conflict(
                 "--mis optimal does not combine with --light-select ris (a resampled light \
                  sample has no density for the control variate)"
+                    .into(),
+            ));
+        }
+        if s.estimator == EstimatorKind::Mis
+            && s.mis.heuristic == MisHeuristic::Optimal
+            && s.mis.diffuse_bsdf_samples.is_some()
+        {
+            return Err(SettingsError::Conflict(
+                "--diffuse-bsdf-samples does not combine with --mis optimal (its control \
+                 variate needs both techniques at every shading point)"
                     .into(),
             ));
         }
@@ -200,6 +211,7 @@ impl RenderSettings {
             mis: Some(self.mis.heuristic),
             light_samples: Some(self.mis.light_samples),
             bsdf_samples: Some(self.mis.bsdf_samples),
+            diffuse_bsdf_samples: self.mis.diffuse_bsdf_samples,
             light_sampling: Some(self.light_sampling),
             light_select: Some(self.light_select),
             ris_candidates: (self.light_select == LightSelect::Ris).then_some(self.ris_candidates),
@@ -323,6 +335,25 @@ mod tests {
         s.estimator = EstimatorKind::Light;
         assert!(s.envmap_compensation);
         assert!(RenderSettings::build(&scene, &[&s.patch()]).is_ok());
+        let e = bad("--diffuse-bsdf-samples 0 --mis optimal");
+        assert!(
+            e.contains("--diffuse-bsdf-samples") && e.contains("optimal"),
+            "{e}"
+        );
+        // A Lambertian point's own count: unset by default (the BSDF count), zero
+        // allowed, and given back by the patch.
+        assert_eq!(
+            RenderSettings::for_scene(&scene).mis.diffuse_bsdf_samples,
+            None
+        );
+        let p: RenderPatch = "--diffuse-bsdf-samples 0 --bsdf-samples 2".parse().unwrap();
+        let s = RenderSettings::build(&scene, &[&p]).unwrap();
+        assert_eq!(
+            (s.mis.bsdf_samples, s.mis.diffuse_bsdf_samples),
+            (2, Some(0))
+        );
+        assert!(s.patch().to_string().contains("--diffuse-bsdf-samples 0"));
+        assert_eq!(RenderSettings::build(&scene, &[&s.patch()]).unwrap(), s);
         let e = bad("--ris-spatial 4");
         assert!(e.contains("--ris-spatial") && e.contains("bvh"), "{e}");
         let e = bad("--ris-spatial 4 --light-select ris --estimator cosine");

@@ -158,6 +158,11 @@ pub struct MisSettings {
     pub light_samples: u32,
     /// BSDF samples per estimate (M).
     pub bsdf_samples: u32,
+    /// BSDF samples per estimate at shading points whose material is Lambertian, where
+    /// some light draws samples; `None`: `bsdf_samples` there too. Zero leaves such points
+    /// to the light samples alone, with weight 1: the light estimator there, unbiased
+    /// wherever light sampling reaches every emitter.
+    pub diffuse_bsdf_samples: Option<u32>,
 }
 
 impl Default for MisSettings {
@@ -167,6 +172,7 @@ impl Default for MisSettings {
             heuristic: MisHeuristic::Power,
             light_samples: 1,
             bsdf_samples: 1,
+            diffuse_bsdf_samples: None,
         }
     }
 }

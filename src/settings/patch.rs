@@ -128,6 +128,8 @@ render_patch! {
     light_samples: u32 = flag::LIGHT_SAMPLES,
     /// BSDF samples per estimate of the `mis` estimator (1 to 1024).
     bsdf_samples: u32 = flag::BSDF_SAMPLES,
+    /// BSDF samples of the `mis` estimator at Lambertian shading points (0 to 1024; default: --bsdf-samples); 0 leaves them to light samples alone (not under a sky sampled with MIS compensation; not with --mis optimal).
+    diffuse_bsdf_samples: u32 = flag::DIFFUSE_BSDF_SAMPLES,
     /// Area-light sampling: area, visible-area, solid-angle, geometric, solid-angle-cos, projected-solid-angle, best (per shape).
     light_sampling: LightSampling = flag::LIGHT_SAMPLING,
     /// Light selection among many lights: uniform, power, adaptive, bvh, ris.
@@ -187,6 +189,12 @@ impl RenderPatch {
         let ranges = [
             (flag::LIGHT_SAMPLES, self.light_samples, 1, MAX_MIS_SAMPLES),
             (flag::BSDF_SAMPLES, self.bsdf_samples, 1, MAX_MIS_SAMPLES),
+            (
+                flag::DIFFUSE_BSDF_SAMPLES,
+                self.diffuse_bsdf_samples,
+                0,
+                MAX_MIS_SAMPLES,
+            ),
             (
                 flag::RIS_CANDIDATES,
                 self.ris_candidates,
@@ -305,6 +313,10 @@ mod tests {
             (
                 "--light-samples 2000",
                 "--light-samples 2000: must be in 1..=1024",
+            ),
+            (
+                "--diffuse-bsdf-samples 1025",
+                "--diffuse-bsdf-samples 1025: must be in 0..=1024",
             ),
             ("--width 0", "--width 0"),
             ("--no-such 3", "unknown flag `--no-such`"),

@@ -12,6 +12,12 @@
 //! reaches an emitter asks the selector and the light for exactly that product. Samples from
 //! a delta distribution (point lights, mirror lobes) can come from one strategy only, and get
 //! weight 1 from it.
+//!
+//! The BSDF sample count may depend on the shading point (`at_point`): with
+//! `--diffuse-bsdf-samples 0`, a Lambertian point takes light samples alone, with the
+//! weights of M = 0 (1 for every light sample). The weights of the techniques used at a
+//! point still sum to one there, and the counts depend on the point alone (its
+//! material), never on its samples, so each point's estimate stays unbiased.
 
 mod optimal;
 mod optimal_estimate;
@@ -25,7 +31,7 @@ use super::probe::{ProbeSample, no_direction};
 use super::{Context, emitted_at, f_cos_pdf};
 use glam::Vec2;
 
-use crate::bsdf::Bsdf;
+use crate::bsdf::{Bsdf, Material};
 use crate::geometry::{Along, Ray, offset_origin};
 use crate::light::select::{LightSelector, Selection, Selector};
 use crate::light::{LightSample, ShadingPoint};
@@ -34,6 +40,23 @@ use crate::sampling::Uniform;
 use optimal_estimate::optimal_estimate;
 
 pub use crate::settings::MisSettings;
+
+/// `mis` at the shading point of `ctx`: [`MisSettings::diffuse_bsdf_samples`] BSDF
+/// samples where the material is Lambertian and light samples alone reach every emitter
+/// (not where BSDF samples are the only technique, nor under a sky sampled with MIS
+/// compensation, which leaves part of the sky to them), else `mis` as it is.
+#[inline(always)]
+fn at_point(ctx: &Context<'_>, mis: MisSettings) -> MisSettings {
+    match mis.diffuse_bsdf_samples {
+        Some(m) if ctx.lights_cover && matches!(ctx.material, Material::Diffuse(_)) => {
+            MisSettings {
+                bsdf_samples: m,
+                ..mis
+            }
+        }
+        _ => mis,
+    }
+}
 
 /// One estimate of the `mis` estimator.
 pub(super) fn estimate(ctx: &Context<'_>, mis: MisSettings, src: &mut impl Uniform) -> Spectrum {
@@ -85,6 +108,7 @@ pub(super) fn estimate_with(
     src: &mut impl Uniform,
     light: &mut impl LightTechnique,
 ) -> Spectrum {
+    let mis = at_point(ctx, mis);
     let (n, m) = (mis.light_samples as f32, mis.bsdf_samples as f32);
     if mis.heuristic == MisHeuristic::OneSample {
         // With no light to draw from, every estimate takes the BSDF technique.
@@ -198,6 +222,7 @@ pub(super) fn finish<'d>(
     src: &mut impl Uniform,
 ) -> Spectrum {
     debug_assert!(ctx.ris.is_none());
+    let mis = at_point(ctx, mis);
     let n = mis.light_samples as f32;
     let mut sum = Spectrum::ZERO;
     let mut scored = 0;

@@ -55,8 +55,8 @@ fn set_up(
 #[test]
 fn packets_give_the_samples_of_single_rays() {
     // (scene, estimator: the scene's own, optimal MIS, `light`, the scene's own under
-    // `area` or with three light samples; height of the tile's centre as a share of the
-    // image's)
+    // `area`, with three light samples or with no BSDF sample at Lambertian points;
+    // height of the tile's centre as a share of the image's)
     for (spec, which, at) in [
         ("builtin:assignment", "own", 0.5),
         ("builtin:assignment", "light", 0.5),
@@ -79,6 +79,8 @@ fn packets_give_the_samples_of_single_rays() {
         ("tests/scenes/disk_twosided.xml", "light", 0.5),
         ("builtin:shirley-100", "three", 0.6),
         ("tests/scenes/tent_point.xml", "three", 0.85),
+        ("builtin:assignment", "diffuse-alone", 0.5),
+        ("tests/scenes/mesh_obj.xml", "diffuse-alone", 0.5),
     ] {
         let optimal_mis = which == "optimal";
         let scene = load(spec).expect("scene");
@@ -108,6 +110,9 @@ fn packets_give_the_samples_of_single_rays() {
         // Three light samples per estimate (disk_twosided's own are two).
         if which == "three" {
             scenes_own.mis.light_samples = 3;
+        }
+        if which == "diffuse-alone" {
+            scenes_own.mis.diffuse_bsdf_samples = Some(0);
         }
         // Independent numbers, and Sobol's points and the strata's cells drawn a chunk
         // at a time.

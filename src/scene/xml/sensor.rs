@@ -227,6 +227,7 @@ pub fn build_integrator<'a>(
                 heuristic: MisHeuristic::Power,
                 light_samples,
                 bsdf_samples,
+                diffuse_bsdf_samples: None,
             }
         }
         "path" => {
