@@ -121,7 +121,8 @@ fn mis_matches_lambert_for_every_heuristic_and_sample_count() {
 }
 
 /// A Lambertian point's own BSDF-sample count changes nothing elsewhere: on a Phong floor
-/// the estimates are the same bits with and without it; on a diffuse one they differ.
+/// the estimates are the same bits with and without it, on a diffuse one they differ;
+/// under optimal weights it changes nothing at all.
 #[test]
 fn the_diffuse_count_applies_to_lambertian_points_only() {
     let phong = Material::Phong(Phong {
@@ -135,15 +136,24 @@ fn the_diffuse_count_applies_to_lambertian_points_only() {
     for (material, lambertian) in [(phong, false), (diffuse, true)] {
         let (scene, _) = floor_under_rectangle(material);
         let hit = floor_hit(&scene, Vec3::new(-0.4, 0.0, -0.3));
-        let run = |diffuse_bsdf_samples| {
+        let run_with = |heuristic, select, diffuse_bsdf_samples| {
             let mis = MisSettings {
+                heuristic,
                 diffuse_bsdf_samples,
                 ..MisSettings::default()
             };
-            let est =
-                Estimator::new(&scene, EstimatorKind::Mis, LightSelect::Uniform).with_mis(mis);
+            let est = Estimator::new(&scene, EstimatorKind::Mis, select).with_mis(mis);
             estimate(&scene, &est, &hit, 2_000, 5)
         };
+        let run = |diffuse| run_with(MisHeuristic::Power, LightSelect::Uniform, diffuse);
+        // Optimal weights take both techniques everywhere (here through the resampled
+        // light samples' path, which has no control variate).
+        let optimal = |diffuse| run_with(MisHeuristic::Optimal, LightSelect::Ris, diffuse);
+        assert_eq!(
+            optimal(None),
+            optimal(Some(0)),
+            "lambertian {lambertian}: optimal"
+        );
         assert_eq!(
             run(None) != run(Some(0)),
             lambertian,

@@ -51,11 +51,12 @@ pub struct Estimator {
     /// none, e.g. a compensated constant sky alone): one-sample MIS then always takes
     /// the BSDF technique.
     lights_sample: bool,
-    /// Whether light samples alone reach every emitter under `lights`: some light draws
-    /// samples, and no environment is sampled with MIS compensation (whose density is
-    /// zero wherever the map is at or below its mean, directions only BSDF samples see).
-    /// Only then may a shading point go without BSDF samples
-    /// ([`MisSettings::diffuse_bsdf_samples`]).
+    /// Whether light samples alone reach every emitter: some light draws samples, and the
+    /// scene has no environment. A sky sampled with MIS compensation has zero density
+    /// wherever the map is at or below its mean; without it, its samples still stop at
+    /// the geometric horizon, which a BSDF sample about a shading normal may cross (and
+    /// escape through an open mesh). Only where light samples cover may a shading point
+    /// go without BSDF samples ([`MisSettings::diffuse_bsdf_samples`]).
     lights_cover: bool,
     /// Sample counts and weighting of the MIS estimator.
     pub mis: MisSettings,
@@ -233,9 +234,8 @@ impl Estimator {
 /// Whether light samples alone reach every emitter of `scene` under `lights` (see
 /// `Estimator::lights_cover`).
 fn lights_cover(scene: &Scene, lights: LightStrategy) -> bool {
-    let compensated = |l: &Light| l.is_infinite() && lights.env_compensation;
     scene.lights.iter().any(|l| !l.draws_no_samples(lights))
-        && !scene.lights.iter().any(compensated)
+        && !scene.lights.iter().any(Light::is_infinite)
 }
 
 /// What every estimate at a surface hit starts from: its material (textured), the hit

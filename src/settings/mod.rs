@@ -159,9 +159,10 @@ pub struct MisSettings {
     /// BSDF samples per estimate (M).
     pub bsdf_samples: u32,
     /// BSDF samples per estimate at shading points whose material is Lambertian, where
-    /// some light draws samples; `None`: `bsdf_samples` there too. Zero leaves such points
-    /// to the light samples alone, with weight 1: the light estimator there, unbiased
-    /// wherever light sampling reaches every emitter.
+    /// light samples alone reach every emitter (some light draws samples, and the scene
+    /// has no environment); `None`: `bsdf_samples` there too. Zero leaves such points to
+    /// the light samples alone, with weight 1: the light estimator there. Not under
+    /// optimal weights.
     pub diffuse_bsdf_samples: Option<u32>,
 }
 

@@ -128,7 +128,7 @@ render_patch! {
     light_samples: u32 = flag::LIGHT_SAMPLES,
     /// BSDF samples per estimate of the `mis` estimator (1 to 1024).
     bsdf_samples: u32 = flag::BSDF_SAMPLES,
-    /// BSDF samples of the `mis` estimator at Lambertian shading points (0 to 1024; default: --bsdf-samples); 0 leaves them to light samples alone (not under a sky sampled with MIS compensation; not with --mis optimal).
+    /// BSDF samples of the `mis` estimator at Lambertian shading points (0 to 1024; default: --bsdf-samples); 0 leaves them to light samples alone (not in scenes with a sky; not with --mis optimal).
     diffuse_bsdf_samples: u32 = flag::DIFFUSE_BSDF_SAMPLES,
     /// Area-light sampling: area, visible-area, solid-angle, geometric, solid-angle-cos, projected-solid-angle, best (per shape).
     light_sampling: LightSampling = flag::LIGHT_SAMPLING,

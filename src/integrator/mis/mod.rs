@@ -43,17 +43,20 @@ pub use crate::settings::MisSettings;
 
 /// `mis` at the shading point of `ctx`: [`MisSettings::diffuse_bsdf_samples`] BSDF
 /// samples where the material is Lambertian and light samples alone reach every emitter
-/// (not where BSDF samples are the only technique, nor under a sky sampled with MIS
-/// compensation, which leaves part of the sky to them), else `mis` as it is.
+/// (not where BSDF samples are the only technique, nor under a sky: see
+/// `Estimator::lights_cover`), else `mis` as it is. Never under optimal weights, whose
+/// control variate takes both techniques everywhere (renders refuse the pair; a probe
+/// or resampled light samples would reach here), nor where it would leave no sample.
 #[inline(always)]
 fn at_point(ctx: &Context<'_>, mis: MisSettings) -> MisSettings {
+    let applies = ctx.lights_cover
+        && matches!(ctx.material, Material::Diffuse(_))
+        && mis.heuristic != MisHeuristic::Optimal;
     match mis.diffuse_bsdf_samples {
-        Some(m) if ctx.lights_cover && matches!(ctx.material, Material::Diffuse(_)) => {
-            MisSettings {
-                bsdf_samples: m,
-                ..mis
-            }
-        }
+        Some(m) if applies && (m > 0 || mis.light_samples > 0) => MisSettings {
+            bsdf_samples: m,
+            ..mis
+        },
         _ => mis,
     }
 }
