@@ -49,15 +49,20 @@ pub use crate::settings::MisSettings;
 /// or resampled light samples would reach here), nor where it would leave no sample.
 #[inline(always)]
 fn at_point(ctx: &Context<'_>, mis: MisSettings) -> MisSettings {
+    let Some(m) = mis.diffuse_bsdf_samples else {
+        return mis;
+    };
     let applies = ctx.lights_cover
         && matches!(ctx.material, Material::Diffuse(_))
-        && mis.heuristic != MisHeuristic::Optimal;
-    match mis.diffuse_bsdf_samples {
-        Some(m) if applies && (m > 0 || mis.light_samples > 0) => MisSettings {
+        && mis.heuristic != MisHeuristic::Optimal
+        && (m > 0 || mis.light_samples > 0);
+    if applies {
+        MisSettings {
             bsdf_samples: m,
             ..mis
-        },
-        _ => mis,
+        }
+    } else {
+        mis
     }
 }
 
