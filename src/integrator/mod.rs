@@ -29,7 +29,7 @@ use glam::Vec3;
 use crate::bsdf::{Bsdf, Material};
 use crate::geometry::{NO_LIGHT, Ray, SurfaceHit};
 use crate::light::select::{LightSelect, Selector, silent_lights};
-use crate::light::{Light, LightSample, LightStrategy, ShadingPoint};
+use crate::light::{LightSample, LightStrategy, ShadingPoint};
 use crate::math::{Frame, Spectrum};
 use crate::sampling::Uniform;
 use crate::scene::Scene;
@@ -51,13 +51,6 @@ pub struct Estimator {
     /// none, e.g. a compensated constant sky alone): one-sample MIS then always takes
     /// the BSDF technique.
     lights_sample: bool,
-    /// Whether light samples alone reach every emitter: some light draws samples, and the
-    /// scene has no environment. A sky sampled with MIS compensation has zero density
-    /// wherever the map is at or below its mean; without it, its samples still stop at
-    /// the geometric horizon, which a BSDF sample about a shading normal may cross (and
-    /// escape through an open mesh). Only where light samples cover may a shading point
-    /// go without BSDF samples ([`MisSettings::diffuse_bsdf_samples`]).
-    lights_cover: bool,
     /// Sample counts and weighting of the MIS estimator.
     pub mis: MisSettings,
     /// How every light is sampled (per-shape strategy, environment compensation).
@@ -83,7 +76,6 @@ impl Estimator {
             select,
             selector_excludes: false,
             lights_sample: !scene.lights.is_empty(),
-            lights_cover: lights_cover(scene, LightStrategy::default()),
             mis: MisSettings::default(),
             lights: LightStrategy::default(),
             ris: (select == LightSelect::Ris).then_some(DEFAULT_RIS_CANDIDATES),
@@ -112,7 +104,6 @@ impl Estimator {
         self.selector_excludes = silent_lights(&scene.lights, lights).is_some();
         self.selector = self.selector.without_silent(&scene.lights, lights);
         self.lights_sample = scene.lights.iter().any(|l| !l.draws_no_samples(lights));
-        self.lights_cover = lights_cover(scene, lights);
         self.lights = lights;
         self
     }
@@ -226,16 +217,8 @@ impl Estimator {
             optimal: None,
             emitters_reachable: self.emitters_reachable,
             lights_sample: self.lights_sample,
-            lights_cover: self.lights_cover,
         }
     }
-}
-
-/// Whether light samples alone reach every emitter of `scene` under `lights` (see
-/// `Estimator::lights_cover`).
-fn lights_cover(scene: &Scene, lights: LightStrategy) -> bool {
-    scene.lights.iter().any(|l| !l.draws_no_samples(lights))
-        && !scene.lights.iter().any(Light::is_infinite)
 }
 
 /// What every estimate at a surface hit starts from: its material (textured), the hit
@@ -330,11 +313,20 @@ struct Context<'a> {
     emitters_reachable: bool,
     /// Whether some light draws samples (see [`Estimator`]).
     lights_sample: bool,
-    /// Whether light samples alone reach every emitter (see [`Estimator`]).
-    lights_cover: bool,
 }
 
 impl Context<'_> {
+    /// Whether light samples alone reach every emitter: some light draws samples, and the
+    /// scene has no environment. A sky sampled with MIS compensation has zero density
+    /// wherever the map is at or below its mean; without it, its samples still stop at
+    /// the geometric horizon, which a BSDF sample about a shading normal may cross (and
+    /// escape through an open mesh). Only then may a shading point go without BSDF
+    /// samples ([`MisSettings::diffuse_bsdf_samples`]).
+    #[inline]
+    fn lights_cover(&self) -> bool {
+        self.lights_sample && self.scene.environment.is_none()
+    }
+
     /// Whether BSDF-sampled rays are worth tracing: some emitter can be reached, or a
     /// probe records every sample drawn.
     #[inline]

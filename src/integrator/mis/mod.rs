@@ -44,7 +44,7 @@ pub use crate::settings::MisSettings;
 /// `mis` at the shading point of `ctx`: [`MisSettings::diffuse_bsdf_samples`] BSDF
 /// samples where the material is Lambertian and light samples alone reach every emitter
 /// (not where BSDF samples are the only technique, nor under a sky: see
-/// `Estimator::lights_cover`), else `mis` as it is. Never under optimal weights, whose
+/// `Context::lights_cover`), else `mis` as it is. Never under optimal weights, whose
 /// control variate takes both techniques everywhere (renders refuse the pair; a probe
 /// or resampled light samples would reach here), nor where it would leave no sample.
 #[inline(always)]
@@ -52,7 +52,7 @@ fn at_point(ctx: &Context<'_>, mis: MisSettings) -> MisSettings {
     let Some(m) = mis.diffuse_bsdf_samples else {
         return mis;
     };
-    let applies = ctx.lights_cover
+    let applies = ctx.lights_cover()
         && matches!(ctx.material, Material::Diffuse(_))
         && mis.heuristic != MisHeuristic::Optimal
         && (m > 0 || mis.light_samples > 0);
